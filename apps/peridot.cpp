@@ -1,0 +1,76 @@
+// peridot: the command-line program.
+//   peridot run deck.yaml      run a deck (exit 2: bad deck, nothing written; exit 3: numerical failure)
+//   peridot check deck.yaml    validate a deck and print what the run would be, without running it
+//   peridot info [--markdown]  every model, key, unit and default, from the schema the parser uses
+#include <omp.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "peridot/deck/deck.hpp"
+#include "peridot/solvers/runner.hpp"
+#include "peridot/solvers/simulation.hpp"
+
+namespace {
+
+constexpr int exit_input_error = 2;
+constexpr int exit_numerical_error = 3;
+
+int report(const peridot::InputError& e) {
+  for (const peridot::Diagnostic& d : e.diagnostics()) std::cerr << d.str() << '\n';
+  std::cerr << e.diagnostics().size() << (e.diagnostics().size() == 1 ? " error" : " errors")
+            << "; nothing was run or written\n";
+  return exit_input_error;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Peridot: peridynamic solid mechanics and fracture"};
+  app.require_subcommand(1);
+  std::string deck;
+  int threads = 0;
+  bool quiet = false, markdown = false;
+
+  CLI::App* run = app.add_subcommand("run", "run a deck");
+  run->add_option("deck", deck, "the YAML deck")->required();
+  run->add_option("-t,--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)");
+  run->add_flag("-q,--quiet", quiet, "no progress line and no log on standard output");
+
+  CLI::App* check = app.add_subcommand("check", "validate a deck and describe the run without running it");
+  check->add_option("deck", deck, "the YAML deck")->required();
+  check->add_option("-t,--threads", threads, "OpenMP threads");
+
+  CLI::App* info = app.add_subcommand("info", "list every model, key, unit and default");
+  info->add_flag("--markdown", markdown, "print docs/deck.md");
+
+  CLI11_PARSE(app, argc, argv);
+  if (threads > 0) omp_set_num_threads(threads);
+
+  try {
+    if (info->parsed()) {
+      peridot::print_schema(std::cout, markdown);
+      return 0;
+    }
+    peridot::Problem problem = peridot::load_deck(deck);
+    for (const peridot::Diagnostic& w : problem.warnings) std::cerr << w.str() << '\n';
+    if (check->parsed()) {
+      peridot::Simulation simulation(problem);
+      std::cout << deck << ": valid\n" << peridot::describe_setup(simulation);
+      return 0;
+    }
+    peridot::RunOptions options;
+    options.progress = !quiet;
+    options.log = quiet ? nullptr : &std::cout;
+    peridot::run_problem(problem, options);
+    return 0;
+  } catch (const peridot::InputError& e) {
+    return report(e);
+  } catch (const peridot::NumericalError& e) {
+    std::cerr << "\nerror: " << e.what() << "\noutputs written so far are closed and readable\n";
+    return exit_numerical_error;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return 1;
+  }
+}

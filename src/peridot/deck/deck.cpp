@@ -1,0 +1,540 @@
+// Section parsers: each reads one section through a MapReader (which does all per-key validation)
+// and adds only what involves several keys or sections: elastic constants, horizons, references.
+#include "peridot/deck/deck.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <span>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "peridot/deck/map_reader.hpp"
+#include "peridot/materials/registry.hpp"
+
+namespace peridot {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Horizon as given in one place: in metres or as a multiple of the spacing.
+struct HorizonInput {
+  std::optional<double> horizon;
+  std::optional<double> factor;
+  SourcePos pos;
+  bool given() const { return horizon || factor; }
+};
+
+HorizonInput read_horizon(const MapReader& r) {
+  HorizonInput h{r.optional_number("horizon"), r.optional_number("horizon_factor"), {}};
+  h.pos = r[h.horizon ? "horizon" : "horizon_factor"].pos;
+  return h;
+}
+
+/// Deck-wide state the section parsers share.
+struct Parser {
+  DeckContext& ctx;
+  std::string base_dir;
+  Problem& p;
+  std::optional<double> spacing;
+  SourcePos discretization_pos;
+
+  std::string resolve_file(const Value& v, const std::string& path, bool must_exist) {
+    std::string resolved = fs::absolute(fs::path(base_dir) / v.text).lexically_normal().string();
+    if (must_exist && !fs::exists(resolved)) ctx.error(v.pos, path, "file not found: " + resolved);
+    return resolved;
+  }
+
+  void check_reference(const Value& v, const std::string& path, std::string_view what, const std::string& name,
+                       const std::vector<std::string_view>& known) {
+    if (std::find(known.begin(), known.end(), name) != known.end()) return;
+    std::string_view guess = closest_match(name, known);
+    ctx.error(v.pos, path,
+              fmt::format("unknown {} '{}'{}; {}", what, name, guess.empty() ? "" : fmt::format(" (did you mean '{}'?)", guess),
+                          known.empty() ? fmt::format("no {} is defined", what)
+                                        : fmt::format("defined: {}", fmt::join(known, ", "))));
+  }
+
+  template <class Spec>
+  static std::vector<std::string_view> names_of(const std::vector<Spec>& items) {
+    std::vector<std::string_view> names;
+    for (const Spec& item : items) names.push_back(item.name);
+    return names;
+  }
+
+  // -- iteration over named mappings and lists ------------------------------------------------
+
+  template <class Fn>
+  void for_each_named(const Value& section, const std::string& path, Fn fn) {
+    if (!section.node.IsMap()) return;
+    for (auto it = section.node.begin(); it != section.node.end(); ++it)
+      fn(it->first.Scalar(), node_pos(ctx, it->first), it->second, path + "." + it->first.Scalar());
+  }
+
+  template <class Fn>
+  void for_each_item(const Value& section, const std::string& path, Fn fn) {
+    if (!section.node.IsSequence()) return;
+    for (std::size_t i = 0; i < section.node.size(); ++i) {
+      const YAML::Node item = section.node[i];
+      fn(item, node_pos(ctx, item), fmt::format("{}[{}]", path, i));
+    }
+  }
+
+  // -- discretization --------------------------------------------------------------------------
+
+  /// The dimension decides which keys are allowed everywhere, so it is read before anything else.
+  void peek_dimension(const YAML::Node& discretization) {
+    if (!discretization.IsMap()) return;
+    const YAML::Node& d = discretization["dimension"];
+    if (d.IsScalar() && (d.Scalar() == "2" || d.Scalar() == "3")) ctx.dimension = d.Scalar() == "2" ? 2 : 3;
+  }
+
+  void parse_discretization(const Value& v) {
+    peek_dimension(v.node);
+    discretization_pos = v.key_pos;
+    MapReader r(ctx, v.node, v.key_pos, "discretization", deck_section("discretization").keys);
+    p.dimension = ctx.dimension == 0 ? 3 : ctx.dimension;
+    p.plane = r["plane"].text == "stress" ? PlaneKind::stress : r["plane"].text == "strain" ? PlaneKind::strain : PlaneKind::none;
+    p.thickness = p.dimension == 2 ? r["thickness"].number : 1.0;
+    spacing = r.optional_number("spacing");
+    p.spacing = spacing.value_or(0);
+    p.lattice_origin = r["lattice_origin"].point;
+    p.jitter = r["jitter"].number;
+    p.seed = static_cast<std::uint64_t>(r["seed"].integer);
+    p.partial_volume = r["partial_volume"].boolean;
+    HorizonInput h = read_horizon(r);
+    if (h.given()) p.horizon = resolve_horizon(h, "discretization");
+  }
+
+  /// δ (m) from a horizon input; checks it against the spacing. 0 when it cannot be resolved.
+  double resolve_horizon(const HorizonInput& h, const std::string& path) {
+    if (h.factor && !spacing) {
+      ctx.error(h.pos, path, "horizon_factor needs discretization.spacing; give the horizon in m instead");
+      return 0;
+    }
+    double delta = h.horizon ? *h.horizon : *h.factor * *spacing;
+    if (!spacing) return delta;
+    double ratio = delta / *spacing;
+    if (ratio <= 1) {
+      ctx.error(h.pos, path,
+                fmt::format("horizon δ = {:g} m is not larger than the spacing Δx = {:g} m (δ/Δx = {:g}); "
+                            "a point needs neighbours beyond the adjacent ones, typically δ ≈ 3Δx",
+                            delta, *spacing, ratio));
+    } else if (ratio > 6) {
+      ctx.warning(h.pos, path,
+                  fmt::format("horizon δ/Δx = {:g} is unusually large (> 6): many bonds per point, a slow run", ratio));
+    }
+    return delta;
+  }
+
+  // -- materials -------------------------------------------------------------------------------
+
+  void parse_materials(const Value& v) {
+    for_each_named(v, "materials", [&](const std::string& name, const SourcePos& pos, const YAML::Node& node,
+                                       const std::string& path) {
+      const ModelInfo* model = node.IsMap() && node["model"].IsScalar() ? find_model(node["model"].Scalar()) : nullptr;
+      MapReader r(ctx, node, pos, path, model ? material_keys(*model) : common_material_keys());
+      MaterialSpec m;
+      m.name = name;
+      m.pos = pos;
+      m.model = model ? model->kind : ModelKind::pmb;
+      m.density = r["density"].number;
+      const std::string& influence = r["influence"].text;
+      m.influence = influence == "inverse_distance" ? InfluenceKind::inverse_distance
+                    : influence == "gaussian"       ? InfluenceKind::gaussian
+                                                    : InfluenceKind::constant;
+      if (model) m.elastic = resolve_elastic(r, *model);
+      if (r.given("damage")) m.damage = parse_damage(r["damage"], r.path_of("damage"));
+      p.materials.push_back(std::move(m));
+    });
+  }
+
+  DamageSpec parse_damage(const Value& v, const std::string& path) {
+    MapReader r(ctx, v.node, v.key_pos, path, damage_keys());
+    return {true, r.optional_number("critical_stretch"), r.optional_number("fracture_energy")};
+  }
+
+  /// All four of K, G, E, ν from the ones given: the first two known (for a bond-based model the
+  /// implied ν counts as known) determine the rest; any further one given must agree with them.
+  ElasticConstants resolve_elastic(const MapReader& r, const ModelInfo& model) {
+    struct Known {
+      std::string_view key;
+      double value;
+      SourcePos pos;
+    };
+    static constexpr std::string_view order[] = {"youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus"};
+    for (std::string_view key : order)
+      if (r.present(key) && !r.given(key)) return {};  // already reported as invalid
+
+    std::vector<Known> known;
+    std::string implied;  // why ν is known without being given
+    if (model.bond_based) {
+      double nu = bond_based_poisson_ratio(p.dimension, p.plane);
+      implied = fmt::format("the ν = {:.4g} that bond-based model {} implies in {}", nu, model.name,
+                            p.dimension == 3 ? "3D" : p.plane == PlaneKind::stress ? "plane stress" : "plane strain");
+      if (auto given_nu = r.optional_number("poisson_ratio"); given_nu && std::abs(*given_nu - nu) > 1e-3)
+        ctx.error(r["poisson_ratio"].pos, r.path_of("poisson_ratio"),
+                  fmt::format("{:g} contradicts {} (1/4 in 3D and plane strain, 1/3 in plane stress); "
+                              "remove poisson_ratio or use a state-based model such as lps", *given_nu, implied));
+      known.push_back({"poisson_ratio", nu, {}});
+    }
+    for (std::string_view key : order)
+      if (r.given(key) && !(model.bond_based && key == "poisson_ratio")) known.push_back({key, r[key].number, r[key].pos});
+
+    if (known.size() < 2) {
+      ctx.error(r.owner(), r.path(),
+                model.bond_based ? fmt::format("model {} needs one of youngs_modulus, bulk_modulus, shear_modulus", model.name)
+                                 : fmt::format("give two of youngs_modulus, poisson_ratio, bulk_modulus, shear_modulus{}",
+                                               known.empty() ? "" : fmt::format(" (only {} is given)", known[0].key)));
+      return {};
+    }
+    auto value_of = [&](std::string_view key) -> std::optional<double> {
+      for (const Known& k : std::span(known).first(2))
+        if (k.key == key) return k.value;
+      return std::nullopt;
+    };
+    auto [E, nu] = young_and_poisson(value_of("youngs_modulus"), value_of("poisson_ratio"), value_of("bulk_modulus"),
+                                     value_of("shear_modulus"));
+    std::string basis = known[0].pos.line > 0 ? fmt::format("{} {:g} and {} {:g}", known[0].key, known[0].value, known[1].key, known[1].value)
+                                              : fmt::format("{} {:g} and {}", known[1].key, known[1].value, implied);
+    if (!(E > 0) || !(nu > -1 && nu < 0.5)) {
+      ctx.error(known[1].pos, r.path(),
+                fmt::format("{} give E = {:g} Pa, ν = {:g}: no stable isotropic material (needs E > 0, -1 < ν < 0.5)", basis, E, nu));
+      return {};
+    }
+    ElasticConstants c{E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)), E, nu};
+    // Values given stay exactly as given, so that the resolved deck reads back to the same numbers.
+    for (const Known& k : std::span(known).subspan(2)) {
+      double& derived = constant(c, k.key);
+      if (std::abs(k.value - derived) > 1e-3 * std::abs(derived))
+        ctx.error(k.pos, r.path_of(k.key),
+                  fmt::format("{:g} contradicts the {:g} that {} give; give only two elastic constants", k.value, derived, basis));
+      derived = k.value;
+    }
+    for (const Known& k : std::span(known).first(2)) constant(c, k.key) = k.value;
+    return c;
+  }
+
+  static double& constant(ElasticConstants& c, std::string_view key) {
+    return key == "youngs_modulus" ? c.youngs_modulus
+           : key == "poisson_ratio" ? c.poisson_ratio
+           : key == "bulk_modulus"  ? c.bulk_modulus
+                                    : c.shear_modulus;
+  }
+
+  /// (E, ν) from exactly two of E, ν, K, G (isotropic linear elasticity).
+  static std::pair<double, double> young_and_poisson(std::optional<double> E, std::optional<double> nu,
+                                                     std::optional<double> K, std::optional<double> G) {
+    if (E && nu) return {*E, *nu};
+    if (E && K) return {*E, (3 * *K - *E) / (6 * *K)};
+    if (E && G) return {*E, *E / (2 * *G) - 1};
+    if (nu && K) return {3 * *K * (1 - 2 * *nu), *nu};
+    if (nu && G) return {2 * *G * (1 + *nu), *nu};
+    return {9 * *K * *G / (3 * *K + *G), (3 * *K - 2 * *G) / (2 * (3 * *K + *G))};
+  }
+
+  // -- shapes ----------------------------------------------------------------------------------
+
+  std::optional<Shape> parse_shape(const YAML::Node& node, const SourcePos& owner, const std::string& path) {
+    MapReader r(ctx, node, owner, path, deck_section("shape").keys);
+    for (std::string_view kind : {"box", "cylinder", "tube", "sphere"})
+      if (r.given(kind)) return parse_primitive(kind, r[kind], r.path_of(kind));
+    for (std::string_view kind : {"union", "difference"}) {
+      if (!r.given(kind)) continue;
+      Shape s;
+      s.kind = kind == "union" ? Shape::Kind::union_of : Shape::Kind::difference;
+      for_each_item(r[kind], r.path_of(kind), [&](const YAML::Node& item, const SourcePos& pos, const std::string& item_path) {
+        if (auto child = parse_shape(item, pos, item_path)) s.children.push_back(std::move(*child));
+      });
+      if (r[kind].node.size() == 0) ctx.error(r[kind].pos, r.path_of(kind), "needs at least one shape");
+      return s;
+    }
+    return std::nullopt;
+  }
+
+  Shape parse_primitive(std::string_view kind, const Value& v, const std::string& path) {
+    MapReader r(ctx, v.node, v.key_pos, path, deck_section("shape." + std::string(kind)).keys);
+    Shape s;
+    if (kind == "box") {
+      s.kind = Shape::Kind::box;
+      s.lo = r["min"].point;
+      s.hi = r["max"].point;
+      for (int d = 0; d < p.dimension; ++d)
+        if (r.given("min") && r.given("max") && !(s.lo[d] < s.hi[d]))
+          ctx.error(r["max"].pos, path, fmt::format("max must exceed min in every coordinate ({} is not)", "xyz"[d]));
+      return s;
+    }
+    s.kind = kind == "cylinder" ? Shape::Kind::cylinder : kind == "tube" ? Shape::Kind::tube : Shape::Kind::sphere;
+    s.center = r["center"].point;
+    s.radius = kind == "tube" ? r["outer_radius"].number : r["radius"].number;
+    if (kind == "sphere") return s;
+    s.length = r["length"].number;
+    s.inner_radius = kind == "tube" ? r["inner_radius"].number : 0;
+    if (kind == "tube" && r.given("inner_radius") && r.given("outer_radius") && !(s.inner_radius < s.radius))
+      ctx.error(r["inner_radius"].pos, path, "inner_radius must be smaller than outer_radius");
+    // In 2D a cylinder or tube is a disc or annulus in the xy plane: its axis is z.
+    s.axis = p.dimension == 2 ? Vec3{0, 0, 1} : r["axis"].point;
+    if (norm(s.axis) == 0) {
+      ctx.error(r["axis"].pos, r.path_of("axis"), "must not be zero");
+    } else {
+      s.axis = (1 / norm(s.axis)) * s.axis;
+    }
+    return s;
+  }
+
+  // -- bodies, pre-cracks, node sets -----------------------------------------------------------
+
+  void parse_bodies(const Value& v) {
+    std::vector<std::string_view> materials = names_of(p.materials);
+    for_each_named(v, "bodies", [&](const std::string& name, const SourcePos& pos, const YAML::Node& node,
+                                    const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("bodies.<name>").keys);
+      BodySpec b;
+      b.name = name;
+      b.pos = pos;
+      b.material = r["material"].text;
+      if (r.given("material")) check_reference(r["material"], r.path_of("material"), "material", b.material, materials);
+      if (r.given("shape")) b.shape = parse_shape(r["shape"].node, r["shape"].key_pos, r.path_of("shape"));
+      if (r.given("points_file")) b.points_file = resolve_file(r["points_file"], r.path_of("points_file"), true);
+      if (r.given("block")) b.block_filter = static_cast<int>(r["block"].integer);
+      if (r.given("block") && !r.present("points_file"))
+        ctx.error(r["block"].key_pos, path, "'block' filters the rows of a points_file, and this body has none");
+      HorizonInput h = read_horizon(r);
+      b.horizon = h.given() ? resolve_horizon(h, path) : p.horizon;
+      p.bodies.push_back(std::move(b));
+    });
+    check_spacing_given();
+  }
+
+  /// The lattice spacing is needed as soon as one body is a shape filled on the lattice.
+  void check_spacing_given() {
+    if (spacing) return;
+    for (const BodySpec& b : p.bodies)
+      if (b.points_file.empty()) {
+        ctx.error(discretization_pos, "discretization",
+                  fmt::format("missing required key 'spacing' (body '{}' is filled from a shape on the lattice)", b.name));
+        return;
+      }
+  }
+
+  void parse_precracks(const Value& v) {
+    for_each_item(v, "precracks", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("precracks[i]").keys);
+      PrecrackSpec c;
+      c.pos = pos;
+      c.is_segment = !r.present("rectangle");
+      if (r.given("segment")) {
+        MapReader s(ctx, r["segment"].node, r["segment"].key_pos, r.path_of("segment"), deck_section("precracks[i].segment").keys);
+        c.a = s["from"].point;
+        c.b = s["to"].point;
+        if (s.given("from") && s.given("to") && norm(c.b - c.a) == 0) ctx.error(s["to"].pos, s.path(), "from and to coincide");
+      }
+      if (r.given("rectangle")) {
+        MapReader s(ctx, r["rectangle"].node, r["rectangle"].key_pos, r.path_of("rectangle"),
+                    deck_section("precracks[i].rectangle").keys);
+        c.origin = s["origin"].point;
+        c.edge1 = s["edge1"].point;
+        c.edge2 = s["edge2"].point;
+        if (s.given("edge1") && s.given("edge2") && norm(cross(c.edge1, c.edge2)) == 0)
+          ctx.error(s["edge2"].pos, s.path(), "edge1 and edge2 must span a parallelogram (they are parallel or zero)");
+      }
+      p.precracks.push_back(c);
+    });
+  }
+
+  void parse_node_sets(const Value& v) {
+    std::vector<std::string_view> bodies = names_of(p.bodies);
+    for_each_named(v, "node_sets", [&](const std::string& name, const SourcePos& pos, const YAML::Node& node,
+                                       const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("node_sets.<name>").keys);
+      NodeSetSpec n;
+      n.name = name;
+      n.pos = pos;
+      if (r.given("shape")) n.shape = parse_shape(r["shape"].node, r["shape"].key_pos, r.path_of("shape"));
+      if (r.given("ids_file")) n.ids_file = resolve_file(r["ids_file"], r.path_of("ids_file"), true);
+      n.bodies = r["bodies"].names;
+      for (const std::string& body : n.bodies) check_reference(r["bodies"], r.path_of("bodies"), "body", body, bodies);
+      p.node_sets.push_back(std::move(n));
+    });
+  }
+
+  void check_node_sets(const Value& v, const std::string& path, const std::vector<std::string>& names) {
+    std::vector<std::string_view> known = names_of(p.node_sets);
+    for (const std::string& name : names) check_reference(v, path, "node set", name, known);
+  }
+
+  // -- loads -------------------------------------------------------------------------------------
+
+  /// The x, y, z expressions of a section; reports a section that gives none of them.
+  std::array<std::optional<Expression>, 3> components_of(const MapReader& r) {
+    std::array<std::optional<Expression>, 3> components;
+    bool any_present = false;
+    for (std::size_t d = 0; d < 3; ++d) {
+      std::string_view key = std::string_view("xyz").substr(d, 1);
+      any_present = any_present || r.present(key);
+      if (r.given(key)) components[d] = r[key].expression;
+    }
+    if (!any_present) ctx.error(r.owner(), r.path(), p.dimension == 2 ? "give at least one of x, y" : "give at least one of x, y, z");
+    return components;
+  }
+
+  /// The components of `r`'s displacement or velocity, read against their section's keys.
+  std::array<std::optional<Expression>, 3> components_of(const MapReader& r, const std::string& key, const std::string& section) {
+    return components_of(MapReader(ctx, r[key].node, r[key].key_pos, r.path_of(key), deck_section(section + "." + key).keys));
+  }
+
+  std::string node_set_of(const MapReader& r) {
+    if (!r.given("node_set")) return "";
+    const Value& v = r["node_set"];
+    check_node_sets(v, r.path_of("node_set"), {v.text});
+    return v.text;
+  }
+
+  void parse_initial_conditions(const Value& v) {
+    for_each_item(v, "initial_conditions", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("initial_conditions[i]").keys);
+      InitialConditionSpec ic;
+      ic.pos = pos;
+      ic.node_set = node_set_of(r);
+      for (auto kind : {InitialConditionSpec::Kind::displacement, InitialConditionSpec::Kind::velocity}) {
+        std::string key = kind == InitialConditionSpec::Kind::displacement ? "displacement" : "velocity";
+        if (!r.given(key)) continue;
+        ic.kind = kind;
+        auto components = components_of(r, key, "initial_conditions[i]");
+        std::copy(components.begin(), components.end(), ic.component);
+      }
+      p.initial_conditions.push_back(std::move(ic));
+    });
+  }
+
+  void parse_boundary_conditions(const Value& v) {
+    for_each_item(v, "boundary_conditions", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("boundary_conditions[i]").keys);
+      std::string node_set = node_set_of(r);
+      for (auto kind : {BoundaryConditionSpec::Kind::displacement, BoundaryConditionSpec::Kind::velocity}) {
+        std::string key = kind == BoundaryConditionSpec::Kind::displacement ? "displacement" : "velocity";
+        if (!r.given(key)) continue;
+        auto components = components_of(r, key, "boundary_conditions[i]");
+        // One condition per prescribed component: x and y of a point can be held independently.
+        for (int d = 0; d < 3; ++d)
+          if (const auto& e = components[static_cast<std::size_t>(d)])
+            p.boundary_conditions.push_back({pos, kind, node_set, d, *e});
+      }
+    });
+  }
+
+  void parse_body_forces(const Value& v) {
+    for_each_item(v, "body_forces", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("body_forces[i]").keys);
+      BodyForceSpec f;
+      f.pos = pos;
+      f.node_set = node_set_of(r);
+      auto components = components_of(r);
+      std::copy(components.begin(), components.end(), f.component);
+      p.body_forces.push_back(std::move(f));
+    });
+  }
+
+  // -- solver and output -------------------------------------------------------------------------
+
+  void parse_solver(const Value& v) {
+    MapReader r(ctx, v.node, v.key_pos, "solver", deck_section("solver").keys);
+    p.solver.pos = v.key_pos;
+    p.solver.end_time = r.optional_number("end_time");
+    if (r.given("num_steps")) p.solver.num_steps = r["num_steps"].integer;
+    p.solver.time_step = r.optional_number("time_step");
+    p.solver.safety_factor = r["safety_factor"].number;
+  }
+
+  void parse_output(const Value& v) {
+    MapReader r(ctx, v.node, v.key_pos, "output", deck_section("output").keys);
+    OutputSpec& o = p.output;
+    o.pos = v.key_pos;
+    o.directory = resolve_file(r["directory"], r.path_of("directory"), false);
+    o.progress = r["progress"].boolean;
+    if (r.given("exodus")) {
+      MapReader e(ctx, r["exodus"].node, r["exodus"].key_pos, r.path_of("exodus"), deck_section("output.exodus").keys);
+      o.exodus_every = e["every"].integer;
+      o.exodus_file = e["file"].text;
+    }
+    if (r.given("history")) {
+      MapReader h(ctx, r["history"].node, r["history"].key_pos, r.path_of("history"), deck_section("output.history").keys);
+      o.history_every = h["every"].integer;
+      o.history_file = h["file"].text;
+      o.reaction_sets = h["reaction"].names;
+      check_node_sets(h["reaction"], h.path_of("reaction"), o.reaction_sets);
+      for_each_item(h["probes"], h.path_of("probes"), [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+        MapReader q(ctx, node, pos, path, deck_section("output.history.probes[i]").keys);
+        o.probes.push_back({q["name"].text, pos, q["point"].point, q["field"].text});
+      });
+    }
+  }
+
+  // -- the whole deck ----------------------------------------------------------------------------
+
+  void parse(const YAML::Node& root) {
+    MapReader r(ctx, root, SourcePos{ctx.file(), 1, 1}, "", deck_section("").keys);
+    // A required section that is missing or not a mapping is already reported; skip it.
+    if (r.given("discretization")) parse_discretization(r["discretization"]);
+    parse_materials(r["materials"]);
+    parse_bodies(r["bodies"]);
+    parse_precracks(r["precracks"]);
+    parse_node_sets(r["node_sets"]);
+    p.no_fail_sets = r["no_fail"].names;
+    check_node_sets(r["no_fail"], "no_fail", p.no_fail_sets);
+    parse_initial_conditions(r["initial_conditions"]);
+    parse_boundary_conditions(r["boundary_conditions"]);
+    parse_body_forces(r["body_forces"]);
+    if (r.given("solver")) parse_solver(r["solver"]);
+    if (r.given("output")) {
+      parse_output(r["output"]);
+    } else if (!r.present("output")) {
+      Value defaults;  // an absent output section still gets its defaults
+      defaults.key_pos = r.owner();
+      parse_output(defaults);
+    }
+  }
+};
+
+void sort_by_position(std::vector<Diagnostic>& diagnostics) {
+  std::stable_sort(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& a, const Diagnostic& b) {
+    return std::pair(a.pos.line, a.pos.column) < std::pair(b.pos.line, b.pos.column);
+  });
+}
+
+}  // namespace
+
+Problem parse_deck(const std::string& yaml_text, const std::string& file_name_for_messages, const std::string& base_dir) {
+  DeckContext ctx(file_name_for_messages);
+  Problem problem;
+  problem.deck_path = file_name_for_messages;
+  problem.deck_dir = fs::absolute(base_dir.empty() ? fs::path(".") : fs::path(base_dir)).lexically_normal().string();
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(ctx.pos(e.mark), "invalid YAML: " + e.msg);
+  }
+  Parser{ctx, problem.deck_dir, problem}.parse(root);
+  sort_by_position(ctx.errors());
+  if (!ctx.errors().empty()) throw InputError(std::move(ctx.errors()));
+  sort_by_position(ctx.warnings());
+  problem.warnings = std::move(ctx.warnings());
+  return problem;
+}
+
+Problem load_deck(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(SourcePos{path, 0, 0}, "cannot read the deck file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_deck(text.str(), path, fs::absolute(path).parent_path().string());
+}
+
+}  // namespace peridot

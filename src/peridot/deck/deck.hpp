@@ -1,0 +1,25 @@
+#pragma once
+// The deck stage: YAML text → a validated, fully resolved Problem (DESIGN.md "The deck").
+// Every problem in a deck is collected, each with file:line:col, and thrown together as one InputError.
+#include <iosfwd>
+#include <string>
+
+#include "peridot/deck/problem.hpp"
+
+namespace peridot {
+
+/// Reads and parses the deck at `path`; relative file names in it are relative to its folder.
+/// Throws InputError carrying every error (warnings end up in Problem::warnings).
+Problem load_deck(const std::string& path);
+
+/// Parses deck text; `file_name_for_messages` prefixes positions, `base_dir` resolves relative paths.
+Problem parse_deck(const std::string& yaml_text, const std::string& file_name_for_messages, const std::string& base_dir);
+
+/// The deck as the run understood it: every default filled in, every number in SI, all four elastic
+/// constants, paths absolute. parse_deck reads it back to an equal Problem (positions aside).
+std::string resolved_deck_yaml(const Problem& problem);
+
+/// The deck reference generated from the schema tables: plain text (`peridot info`) or Markdown (docs/deck.md).
+void print_schema(std::ostream& out, bool markdown);
+
+}  // namespace peridot

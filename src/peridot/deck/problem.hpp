@@ -1,0 +1,158 @@
+#pragma once
+// The validated, fully resolved content of a deck: every default filled in, every unit converted to SI,
+// every cross-reference (body → material, boundary condition → node set) checked. The rest of the
+// pipeline reads only this; it never sees YAML. Each item keeps the deck position it came from, so that
+// errors found later (a node set that selects no point) can still name file:line:col.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "peridot/core/error.hpp"
+#include "peridot/core/vec3.hpp"
+#include "peridot/geometry/shape.hpp"
+
+namespace peridot {
+
+enum class ModelKind { pmb, lps };
+enum class InfluenceKind { constant, inverse_distance, gaussian };  ///< ω = 1, δ/ξ, exp(−ξ²/δ²)
+enum class PlaneKind { none, stress, strain };                      ///< none in 3D
+
+/// Isotropic elastic constants, all four resolved from the two (or, for PMB, one) the deck gives.
+struct ElasticConstants {
+  double bulk_modulus = 0;    ///< K (Pa)
+  double shear_modulus = 0;   ///< G (Pa)
+  double youngs_modulus = 0;  ///< E (Pa)
+  double poisson_ratio = 0;   ///< ν (-)
+};
+
+struct DamageSpec {
+  bool enabled = false;
+  std::optional<double> critical_stretch;  ///< s0 (-), given directly
+  std::optional<double> fracture_energy;   ///< G0 (J/m²); s0 then follows from K, δ (3D/2D formulas)
+};
+
+struct MaterialSpec {
+  std::string name;
+  SourcePos pos;
+  ModelKind model = ModelKind::pmb;
+  double density = 0;  ///< ρ (kg/m³)
+  ElasticConstants elastic;
+  InfluenceKind influence = InfluenceKind::constant;
+  DamageSpec damage;
+};
+
+/// Where a body's points come from: a shape filled on the lattice, or a text point file
+/// with columns x y [z] volume [block] (block rows filtered by `block`, when given).
+struct BodySpec {
+  std::string name;
+  SourcePos pos;
+  std::string material;  ///< name of a MaterialSpec
+  std::optional<Shape> shape;
+  std::string points_file;         ///< resolved relative to the deck's folder
+  std::optional<int> block_filter;  ///< keep only rows whose block column equals this
+  double horizon = 0;               ///< δ (m), resolved from horizon or horizon_factor × spacing
+};
+
+struct PrecrackSpec {
+  SourcePos pos;
+  // 2D: segment from a to b. 3D: parallelogram origin + s·edge1 + t·edge2, s,t ∈ [0,1].
+  bool is_segment = true;
+  Vec3 a, b;                  ///< segment end points
+  Vec3 origin, edge1, edge2;  ///< rectangle
+};
+
+struct NodeSetSpec {
+  std::string name;
+  SourcePos pos;
+  std::optional<Shape> shape;  ///< points inside the shape (of the listed bodies, or of all)
+  std::vector<std::string> bodies;  ///< restrict to these bodies; empty = all
+  std::string ids_file;             ///< or: a text file of 0-based point ids (in input order)
+};
+
+/// A scalar expression of x, y, z (and t where allowed), checked by muParser at parse time.
+struct Expression {
+  std::string text;
+  SourcePos pos;
+  bool depends_on_time = false;
+};
+
+struct InitialConditionSpec {
+  SourcePos pos;
+  enum class Kind { displacement, velocity } kind = Kind::velocity;
+  std::string node_set;  ///< empty = every point
+  std::optional<Expression> component[3];
+};
+
+struct BoundaryConditionSpec {
+  SourcePos pos;
+  enum class Kind { displacement, velocity } kind = Kind::displacement;
+  std::string node_set;
+  int component = 0;  ///< 0, 1, 2 = x, y, z
+  Expression value;   ///< of x, y, z, t (m or m/s)
+};
+
+struct BodyForceSpec {
+  SourcePos pos;
+  std::string node_set;  ///< empty = every point
+  std::optional<Expression> component[3];  ///< force density (N/m³) of x, y, z, t
+};
+
+struct SolverSpec {
+  SourcePos pos;
+  std::optional<double> end_time;        ///< s
+  std::optional<std::int64_t> num_steps;
+  std::optional<double> time_step;       ///< fixed Δt (s); otherwise safety_factor × stable
+  double safety_factor = 0.8;
+  /// Mass-proportional viscous damping c (1/s): free velocities decay as e^{−ct}. 0 = none. Used to
+  /// relax to static equilibrium (quasi-static loading); it removes energy the history does not count.
+  double damping = 0;
+};
+
+struct ProbeSpec {
+  std::string name;
+  SourcePos pos;
+  Vec3 point;         ///< the nearest point to this position is sampled
+  std::string field;  ///< e.g. displacement_x, velocity_y, damage, dilatation
+};
+
+struct OutputSpec {
+  SourcePos pos;
+  std::string directory = "output";  ///< resolved relative to the deck's folder
+  std::int64_t exodus_every = 0;      ///< 0 = no Exodus file
+  std::string exodus_file = "results.e";
+  std::int64_t history_every = 0;     ///< 0 = no history
+  std::string history_file = "history.csv";
+  std::vector<std::string> reaction_sets;  ///< node sets whose reaction force is recorded
+  std::vector<ProbeSpec> probes;
+  bool progress = true;
+};
+
+struct Problem {
+  std::string deck_path;
+  std::string deck_dir;
+  int dimension = 3;
+  PlaneKind plane = PlaneKind::none;
+  double thickness = 1;  ///< h (m), 2D only
+  double spacing = 0;    ///< Δx (m); 0 when every body comes from a point file
+  double horizon = 0;    ///< δ (m) of bodies that do not set their own (each BodySpec holds its resolved δ)
+  Vec3 lattice_origin;   ///< lattice points sit at origin + (i + ½)Δx
+  double jitter = 0;     ///< fraction of Δx, uniform in ±jitter·Δx per coordinate
+  std::uint64_t seed = 1;
+  bool partial_volume = false;
+  std::vector<MaterialSpec> materials;
+  std::vector<BodySpec> bodies;
+  std::vector<PrecrackSpec> precracks;
+  std::vector<NodeSetSpec> node_sets;
+  std::vector<std::string> no_fail_sets;  ///< bonds touching these points never break
+  std::vector<InitialConditionSpec> initial_conditions;
+  std::vector<BoundaryConditionSpec> boundary_conditions;
+  std::vector<BodyForceSpec> body_forces;
+  SolverSpec solver;
+  OutputSpec output;
+  std::vector<Diagnostic> warnings;  ///< deck problems that do not stop the run (e.g. an unusual horizon)
+
+  const MaterialSpec& material_of(const BodySpec& body) const;
+};
+
+}  // namespace peridot

@@ -1,0 +1,260 @@
+// The resolved deck: what the run understood, written next to its results so that a run folder
+// describes itself. Every value is explicit and in SI; parse_deck reads it back unchanged.
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "peridot/deck/deck.hpp"
+#include "peridot/materials/registry.hpp"
+
+namespace peridot {
+
+namespace {
+
+/// Shortest text that reads back to the same double.
+std::string number(double v) { return fmt::format("{}", v); }
+
+void emit_point(YAML::Emitter& out, Vec3 v) {
+  out << YAML::Flow << YAML::BeginSeq << number(v.x) << number(v.y) << number(v.z) << YAML::EndSeq;
+}
+
+void emit_names(YAML::Emitter& out, const std::vector<std::string>& names) {
+  out << YAML::Flow << YAML::BeginSeq;
+  for (const std::string& n : names) out << n;
+  out << YAML::EndSeq;
+}
+
+void emit_shape(YAML::Emitter& out, const Shape& s) {
+  out << YAML::BeginMap;
+  switch (s.kind) {
+    case Shape::Kind::box:
+      out << YAML::Key << "box" << YAML::Value << YAML::BeginMap;
+      out << YAML::Key << "min" << YAML::Value;
+      emit_point(out, s.lo);
+      out << YAML::Key << "max" << YAML::Value;
+      emit_point(out, s.hi);
+      out << YAML::EndMap;
+      break;
+    case Shape::Kind::sphere:
+      out << YAML::Key << "sphere" << YAML::Value << YAML::BeginMap << YAML::Key << "center" << YAML::Value;
+      emit_point(out, s.center);
+      out << YAML::Key << "radius" << YAML::Value << number(s.radius) << YAML::EndMap;
+      break;
+    case Shape::Kind::cylinder:
+    case Shape::Kind::tube: {
+      bool tube = s.kind == Shape::Kind::tube;
+      out << YAML::Key << (tube ? "tube" : "cylinder") << YAML::Value << YAML::BeginMap;
+      out << YAML::Key << "center" << YAML::Value;
+      emit_point(out, s.center);
+      if (tube) out << YAML::Key << "inner_radius" << YAML::Value << number(s.inner_radius);
+      out << YAML::Key << (tube ? "outer_radius" : "radius") << YAML::Value << number(s.radius);
+      if (s.length > 0) {  // 3D only: a 2D disc or annulus has neither length nor axis
+        out << YAML::Key << "axis" << YAML::Value;
+        emit_point(out, s.axis);
+        out << YAML::Key << "length" << YAML::Value << number(s.length);
+      }
+      out << YAML::EndMap;
+      break;
+    }
+    case Shape::Kind::union_of:
+    case Shape::Kind::difference:
+      out << YAML::Key << (s.kind == Shape::Kind::union_of ? "union" : "difference") << YAML::Value << YAML::BeginSeq;
+      for (const Shape& child : s.children) emit_shape(out, child);
+      out << YAML::EndSeq;
+      break;
+  }
+  out << YAML::EndMap;
+}
+
+void emit_components(YAML::Emitter& out, const std::optional<Expression> (&component)[3]) {
+  for (int d = 0; d < 3; ++d)
+    if (component[d]) out << YAML::Key << std::string(1, "xyz"[d]) << YAML::Value << component[d]->text;
+}
+
+std::string_view influence_name(InfluenceKind k) {
+  return k == InfluenceKind::constant ? "constant" : k == InfluenceKind::inverse_distance ? "inverse_distance" : "gaussian";
+}
+
+void emit_discretization(YAML::Emitter& out, const Problem& p) {
+  out << YAML::Key << "discretization" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "dimension" << YAML::Value << p.dimension;
+  if (p.spacing > 0) out << YAML::Key << "spacing" << YAML::Value << number(p.spacing);
+  out << YAML::Key << "horizon" << YAML::Value << number(p.horizon);
+  if (p.dimension == 2) {
+    out << YAML::Key << "plane" << YAML::Value << (p.plane == PlaneKind::stress ? "stress" : "strain");
+    out << YAML::Key << "thickness" << YAML::Value << number(p.thickness);
+  }
+  out << YAML::Key << "lattice_origin" << YAML::Value;
+  emit_point(out, p.lattice_origin);
+  out << YAML::Key << "jitter" << YAML::Value << number(p.jitter);
+  out << YAML::Key << "seed" << YAML::Value << p.seed;
+  out << YAML::Key << "partial_volume" << YAML::Value << p.partial_volume;
+  out << YAML::EndMap;
+}
+
+void emit_materials(YAML::Emitter& out, const Problem& p) {
+  out << YAML::Key << "materials" << YAML::Value << YAML::BeginMap;
+  for (const MaterialSpec& m : p.materials) {
+    out << YAML::Key << m.name << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "model" << YAML::Value << std::string(model_info(m.model).name);
+    out << YAML::Key << "density" << YAML::Value << number(m.density);
+    out << YAML::Key << "bulk_modulus" << YAML::Value << number(m.elastic.bulk_modulus);
+    out << YAML::Key << "shear_modulus" << YAML::Value << number(m.elastic.shear_modulus);
+    out << YAML::Key << "youngs_modulus" << YAML::Value << number(m.elastic.youngs_modulus);
+    out << YAML::Key << "poisson_ratio" << YAML::Value << number(m.elastic.poisson_ratio);
+    out << YAML::Key << "influence" << YAML::Value << std::string(influence_name(m.influence));
+    if (m.damage.enabled) {
+      out << YAML::Key << "damage" << YAML::Value << YAML::BeginMap;
+      if (m.damage.critical_stretch) out << YAML::Key << "critical_stretch" << YAML::Value << number(*m.damage.critical_stretch);
+      if (m.damage.fracture_energy) out << YAML::Key << "fracture_energy" << YAML::Value << number(*m.damage.fracture_energy);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+}
+
+void emit_bodies(YAML::Emitter& out, const Problem& p) {
+  out << YAML::Key << "bodies" << YAML::Value << YAML::BeginMap;
+  for (const BodySpec& b : p.bodies) {
+    out << YAML::Key << b.name << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "material" << YAML::Value << b.material;
+    if (b.shape) {
+      out << YAML::Key << "shape" << YAML::Value;
+      emit_shape(out, *b.shape);
+    } else {
+      out << YAML::Key << "points_file" << YAML::Value << b.points_file;
+    }
+    if (b.block_filter) out << YAML::Key << "block" << YAML::Value << *b.block_filter;
+    out << YAML::Key << "horizon" << YAML::Value << number(b.horizon);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+}
+
+/// `key: [items]` in block style, left out when there are none.
+template <class Item, class EmitItem>
+void emit_list(YAML::Emitter& out, const char* key, const std::vector<Item>& items, EmitItem emit_item) {
+  if (items.empty()) return;
+  out << YAML::Key << key << YAML::Value << YAML::BeginSeq;
+  for (const Item& item : items) {
+    out << YAML::BeginMap;
+    emit_item(item);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+}
+
+void emit_precracks_and_node_sets(YAML::Emitter& out, const Problem& p) {
+  emit_list(out, "precracks", p.precracks, [&](const PrecrackSpec& c) {
+    if (c.is_segment) {
+      out << YAML::Key << "segment" << YAML::Value << YAML::BeginMap << YAML::Key << "from" << YAML::Value;
+      emit_point(out, c.a);
+      out << YAML::Key << "to" << YAML::Value;
+      emit_point(out, c.b);
+    } else {
+      out << YAML::Key << "rectangle" << YAML::Value << YAML::BeginMap << YAML::Key << "origin" << YAML::Value;
+      emit_point(out, c.origin);
+      out << YAML::Key << "edge1" << YAML::Value;
+      emit_point(out, c.edge1);
+      out << YAML::Key << "edge2" << YAML::Value;
+      emit_point(out, c.edge2);
+    }
+    out << YAML::EndMap;
+  });
+
+  if (!p.node_sets.empty()) {
+    out << YAML::Key << "node_sets" << YAML::Value << YAML::BeginMap;
+    for (const NodeSetSpec& n : p.node_sets) {
+      out << YAML::Key << n.name << YAML::Value << YAML::BeginMap;
+      if (n.shape) {
+        out << YAML::Key << "shape" << YAML::Value;
+        emit_shape(out, *n.shape);
+      } else {
+        out << YAML::Key << "ids_file" << YAML::Value << n.ids_file;
+      }
+      if (!n.bodies.empty()) {
+        out << YAML::Key << "bodies" << YAML::Value;
+        emit_names(out, n.bodies);
+      }
+      out << YAML::EndMap;
+    }
+    out << YAML::EndMap;
+  }
+  if (!p.no_fail_sets.empty()) {
+    out << YAML::Key << "no_fail" << YAML::Value;
+    emit_names(out, p.no_fail_sets);
+  }
+}
+
+void emit_loads(YAML::Emitter& out, const Problem& p) {
+  emit_list(out, "initial_conditions", p.initial_conditions, [&](const InitialConditionSpec& ic) {
+    if (!ic.node_set.empty()) out << YAML::Key << "node_set" << YAML::Value << ic.node_set;
+    bool displacement = ic.kind == InitialConditionSpec::Kind::displacement;
+    out << YAML::Key << (displacement ? "displacement" : "velocity") << YAML::Value << YAML::BeginMap;
+    emit_components(out, ic.component);
+    out << YAML::EndMap;
+  });
+  // One entry per component, as the Problem holds them.
+  emit_list(out, "boundary_conditions", p.boundary_conditions, [&](const BoundaryConditionSpec& bc) {
+    bool displacement = bc.kind == BoundaryConditionSpec::Kind::displacement;
+    out << YAML::Key << "node_set" << YAML::Value << bc.node_set;
+    out << YAML::Key << (displacement ? "displacement" : "velocity") << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << std::string(1, "xyz"[bc.component]) << YAML::Value << bc.value.text;
+    out << YAML::EndMap;
+  });
+  emit_list(out, "body_forces", p.body_forces, [&](const BodyForceSpec& f) {
+    if (!f.node_set.empty()) out << YAML::Key << "node_set" << YAML::Value << f.node_set;
+    emit_components(out, f.component);
+  });
+}
+
+void emit_solver_and_output(YAML::Emitter& out, const Problem& p) {
+  out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
+  if (p.solver.end_time) out << YAML::Key << "end_time" << YAML::Value << number(*p.solver.end_time);
+  if (p.solver.num_steps) out << YAML::Key << "num_steps" << YAML::Value << *p.solver.num_steps;
+  if (p.solver.time_step) out << YAML::Key << "time_step" << YAML::Value << number(*p.solver.time_step);
+  out << YAML::Key << "safety_factor" << YAML::Value << number(p.solver.safety_factor);
+  out << YAML::EndMap;
+
+  const OutputSpec& o = p.output;
+  out << YAML::Key << "output" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "directory" << YAML::Value << o.directory;
+  if (o.exodus_every > 0)
+    out << YAML::Key << "exodus" << YAML::Value << YAML::BeginMap << YAML::Key << "every" << YAML::Value << o.exodus_every
+        << YAML::Key << "file" << YAML::Value << o.exodus_file << YAML::EndMap;
+  if (o.history_every > 0) {
+    out << YAML::Key << "history" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "every" << YAML::Value << o.history_every;
+    out << YAML::Key << "file" << YAML::Value << o.history_file;
+    out << YAML::Key << "reaction" << YAML::Value;
+    emit_names(out, o.reaction_sets);
+    out << YAML::Key << "probes" << YAML::Value << YAML::BeginSeq;
+    for (const ProbeSpec& probe : o.probes) {
+      out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << probe.name << YAML::Key << "point" << YAML::Value;
+      emit_point(out, probe.point);
+      out << YAML::Key << "field" << YAML::Value << probe.field << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::EndMap;
+  }
+  out << YAML::Key << "progress" << YAML::Value << o.progress;
+  out << YAML::EndMap;
+}
+
+}  // namespace
+
+std::string resolved_deck_yaml(const Problem& p) {
+  YAML::Emitter out;
+  out.SetBoolFormat(YAML::TrueFalseBool);
+  out << YAML::Comment("Resolved from " + p.deck_path + " by peridot: every default filled in, SI units") << YAML::Newline;
+  out << YAML::BeginMap;
+  emit_discretization(out, p);
+  emit_materials(out, p);
+  emit_bodies(out, p);
+  emit_precracks_and_node_sets(out, p);
+  emit_loads(out, p);
+  emit_solver_and_output(out, p);
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace peridot

@@ -1,0 +1,314 @@
+#include "peridot/deck/schema.hpp"
+
+// KeySpecs are written with designated initializers that leave the other fields at their defaults on
+// purpose; GCC 12 warns about every omitted field regardless.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "peridot/core/error.hpp"
+#include "peridot/materials/registry.hpp"
+
+namespace peridot {
+
+// ---------------------------------------------------------------------------------------------
+// Ranges
+
+bool Range::contains(double v) const {
+  bool above = lo_open ? v > lo : v >= lo;
+  bool below = hi_open ? v < hi : v <= hi;
+  return above && below;
+}
+
+bool Range::is_everything() const { return std::isinf(lo) && std::isinf(hi); }
+
+std::string Range::str() const {
+  if (is_everything()) return "";
+  if (std::isinf(hi)) return fmt::format("{} {}", lo_open ? ">" : "≥", lo);
+  if (std::isinf(lo)) return fmt::format("{} {}", hi_open ? "<" : "≤", hi);
+  return fmt::format("{}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Units: a small table of spellings per quantity, not a unit algebra.
+
+namespace {
+
+struct UnitInfo {
+  Unit unit;
+  std::string_view quantity;
+  std::vector<std::pair<std::string_view, double>> spellings;  ///< first = SI
+};
+
+const std::vector<UnitInfo>& unit_table() {
+  static const std::vector<UnitInfo> table = {
+      {Unit::none, "dimensionless", {{"-", 1.0}}},
+      {Unit::length, "length", {{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"um", 1e-6}, {"µm", 1e-6}, {"nm", 1e-9}}},
+      {Unit::time, "time", {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"µs", 1e-6}, {"ns", 1e-9}}},
+      {Unit::pressure, "pressure", {{"Pa", 1.0}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}}},
+      {Unit::density, "density", {{"kg/m^3", 1.0}, {"g/cm^3", 1e3}}},
+      {Unit::energy_per_area, "energy per area", {{"J/m^2", 1.0}, {"N/m", 1.0}, {"kJ/m^2", 1e3}}},
+      {Unit::velocity, "velocity", {{"m/s", 1.0}, {"mm/s", 1e-3}, {"km/s", 1e3}}},
+      {Unit::force_density, "force density", {{"N/m^3", 1.0}, {"kN/m^3", 1e3}, {"MN/m^3", 1e6}}},
+  };
+  return table;
+}
+
+const UnitInfo& unit_info(Unit unit) {
+  for (const UnitInfo& info : unit_table())
+    if (info.unit == unit) return info;
+  PERIDOT_REQUIRE(false, "unit missing from the unit table");
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+}  // namespace
+
+std::string_view si_unit(Unit unit) { return unit_info(unit).spellings.front().first; }
+std::string_view quantity_name(Unit unit) { return unit_info(unit).quantity; }
+
+std::string accepted_units(Unit unit) {
+  std::string list;
+  for (const auto& [spelling, factor] : unit_info(unit).spellings)
+    list += (list.empty() ? "" : ", ") + std::string(spelling);
+  return list;
+}
+
+Quantity parse_quantity(std::string_view text, Unit unit) {
+  text = trim(text);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);  // from_chars rejects a leading '+'
+  double number = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
+  if (ec != std::errc() || !std::isfinite(number))
+    return {std::nullopt, unit == Unit::none ? fmt::format("expected a number, got '{}'", text)
+                                             : fmt::format("expected a number in {}, got '{}'", si_unit(unit), text)};
+  std::string_view suffix = trim(text.substr(static_cast<std::size_t>(end - text.data())));
+  if (suffix.empty()) return {number, ""};
+
+  const UnitInfo& expected = unit_info(unit);
+  if (unit == Unit::none) return {std::nullopt, fmt::format("takes no unit, but '{}' is given", suffix)};
+  for (const auto& [spelling, factor] : expected.spellings)
+    if (spelling == suffix) return {number * factor, ""};
+  for (const UnitInfo& other : unit_table())
+    for (const auto& [spelling, factor] : other.spellings)
+      if (spelling == suffix)
+        return {std::nullopt, fmt::format("'{}' is a unit of {}, but a {} is expected (in {}; accepted: {})", suffix,
+                                          other.quantity, expected.quantity, si_unit(unit), accepted_units(unit))};
+  return {std::nullopt, fmt::format("unknown unit '{}' (a {} is expected; accepted: {})", suffix, expected.quantity,
+                                    accepted_units(unit))};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Did you mean
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      std::size_t substitution = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+      diagonal = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitution});
+    }
+  }
+  return row[b.size()];
+}
+
+std::string_view closest_match(std::string_view word, const std::vector<std::string_view>& candidates) {
+  // A typo changes a few letters (about one edit per three characters) or cuts a word short.
+  std::size_t best = std::max<std::size_t>(2, word.size() / 3) + 1;
+  std::string_view match;
+  for (std::string_view candidate : candidates) {
+    std::size_t d = edit_distance(word, candidate);
+    if (d < best) best = d, match = candidate;
+  }
+  if (!match.empty() || word.size() < 3) return match;
+  for (std::string_view candidate : candidates)
+    if (candidate.starts_with(word)) return candidate;
+  return match;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The sections. Keys that must appear together or exclusively share a `one_of` group name.
+
+namespace {
+
+using VT = ValueType;
+
+KeySpec horizon_key(bool required) {
+  return {.key = "horizon", .unit = Unit::length, .range = positive,
+          .description = "horizon δ (m); or horizon_factor", .required = required, .one_of = "horizon"};
+}
+KeySpec horizon_factor_key(bool required) {
+  return {.key = "horizon_factor", .range = positive,
+          .description = "δ / spacing (3.015 is common); or horizon", .required = required, .one_of = "horizon"};
+}
+
+std::vector<KeySpec> component_keys(Unit unit, ValueType type) {
+  return {{.key = "x", .type = type, .unit = unit, .description = "x component"},
+          {.key = "y", .type = type, .unit = unit, .description = "y component"},
+          {.key = "z", .type = type, .unit = unit, .description = "z component", .dimension = 3}};
+}
+
+std::vector<KeySpec> with_node_set(std::vector<KeySpec> keys, bool required) {
+  keys.insert(keys.begin(), {.key = "node_set", .type = VT::text,
+                             .description = required ? "node set it applies to" : "node set it applies to; default every point",
+                             .required = required});
+  return keys;
+}
+
+std::vector<SectionSpec> make_sections() {
+  std::vector<SectionSpec> s;
+  s.push_back({"", "top level of the deck",
+               {{.key = "discretization", .type = VT::mapping, .description = "dimension, lattice spacing, horizon", .required = true},
+                {.key = "materials", .type = VT::mapping, .description = "named materials", .required = true},
+                {.key = "bodies", .type = VT::mapping, .description = "named bodies: a shape or a point file, and a material", .required = true},
+                {.key = "precracks", .type = VT::sequence, .description = "bonds crossing these are removed at start"},
+                {.key = "node_sets", .type = VT::mapping, .description = "named sets of points"},
+                {.key = "no_fail", .type = VT::names, .description = "node sets whose bonds never break"},
+                {.key = "initial_conditions", .type = VT::sequence, .description = "initial displacement or velocity"},
+                {.key = "boundary_conditions", .type = VT::sequence, .description = "prescribed displacement or velocity"},
+                {.key = "body_forces", .type = VT::sequence, .description = "force per volume"},
+                {.key = "solver", .type = VT::mapping, .description = "explicit time integration", .required = true},
+                {.key = "output", .type = VT::mapping, .description = "Exodus fields, CSV history, progress"}}});
+  s.push_back({"discretization", "the point lattice",
+               {{.key = "dimension", .type = VT::integer, .range = {2, 3}, .description = "2 or 3", .required = true},
+                {.key = "spacing", .unit = Unit::length, .range = positive,
+                 .description = "lattice spacing Δx (m); required unless every body uses points_file"},
+                horizon_factor_key(true),
+                horizon_key(true),
+                {.key = "plane", .type = VT::choice, .description = "2D idealisation", .required = true, .dimension = 2,
+                 .choices = {"stress", "strain"}},
+                {.key = "thickness", .unit = Unit::length, .default_yaml = "1", .range = positive,
+                 .description = "out-of-plane thickness h (m)", .dimension = 2},
+                {.key = "lattice_origin", .type = VT::point, .default_yaml = "[0, 0, 0]",
+                 .description = "lattice points sit at origin + (i + ½)Δx"},
+                {.key = "jitter", .default_yaml = "0", .range = {0, 0.5, false, true},
+                 .description = "random shift of each point, fraction of Δx"},
+                {.key = "seed", .type = VT::integer, .default_yaml = "1", .range = non_negative,
+                 .description = "random seed of the jitter"},
+                {.key = "partial_volume", .type = VT::boolean, .default_yaml = "false",
+                 .description = "weigh bonds by the part of the neighbour's cell inside the horizon"}}});
+  s.push_back({"materials.<name>", "a material: a model from the registry and its parameters", common_material_keys()});
+  s.push_back({"materials.<name>.damage", "bond breaking; omit for no damage", damage_keys()});
+  s.push_back({"bodies.<name>", "a body: points filling a shape on the lattice, or read from a file",
+               {{.key = "material", .type = VT::text, .description = "name of a material", .required = true},
+                {.key = "shape", .type = VT::mapping, .description = "a shape (see shape)", .required = true, .one_of = "source"},
+                {.key = "points_file", .type = VT::text, .description = "text file, columns x y [z] volume [block]; relative to the deck",
+                 .required = true, .one_of = "source"},
+                {.key = "block", .type = VT::integer, .description = "with points_file: keep only rows of this block"},
+                horizon_factor_key(false),
+                horizon_key(false)}});
+  s.push_back({"shape", "exactly one of these keys; in 2D box → rectangle, cylinder and sphere → disc, tube → annulus",
+               {{.key = "box", .type = VT::mapping, .description = "see shape.box", .required = true, .one_of = "shape"},
+                {.key = "cylinder", .type = VT::mapping, .description = "see shape.cylinder", .required = true, .one_of = "shape"},
+                {.key = "tube", .type = VT::mapping, .description = "see shape.tube", .required = true, .one_of = "shape"},
+                {.key = "sphere", .type = VT::mapping, .description = "see shape.sphere", .required = true, .one_of = "shape"},
+                {.key = "union", .type = VT::sequence, .description = "list of shapes: points in any", .required = true, .one_of = "shape"},
+                {.key = "difference", .type = VT::sequence, .description = "list of shapes: the first minus all others",
+                 .required = true, .one_of = "shape"}}});
+  s.push_back({"shape.box", "axis-aligned box (rectangle in 2D)",
+               {{.key = "min", .type = VT::point, .description = "lowest corner (m)", .required = true},
+                {.key = "max", .type = VT::point, .description = "highest corner (m)", .required = true}}});
+  s.push_back({"shape.cylinder", "solid cylinder (disc in 2D)",
+               {{.key = "center", .type = VT::point, .description = "centre of the base (m)", .required = true},
+                {.key = "axis", .type = VT::point, .default_yaml = "[0, 0, 1]", .description = "direction of the axis", .dimension = 3},
+                {.key = "radius", .unit = Unit::length, .range = positive, .description = "radius (m)", .required = true},
+                {.key = "length", .unit = Unit::length, .range = positive, .description = "length along the axis (m)",
+                 .required = true, .dimension = 3}}});
+  s.push_back({"shape.tube", "hollow cylinder (annulus in 2D)",
+               {{.key = "center", .type = VT::point, .description = "centre of the base (m)", .required = true},
+                {.key = "axis", .type = VT::point, .default_yaml = "[0, 0, 1]", .description = "direction of the axis", .dimension = 3},
+                {.key = "inner_radius", .unit = Unit::length, .range = non_negative, .description = "inner radius (m)", .required = true},
+                {.key = "outer_radius", .unit = Unit::length, .range = positive, .description = "outer radius (m)", .required = true},
+                {.key = "length", .unit = Unit::length, .range = positive, .description = "length along the axis (m)",
+                 .required = true, .dimension = 3}}});
+  s.push_back({"shape.sphere", "ball (disc in 2D)",
+               {{.key = "center", .type = VT::point, .description = "centre (m)", .required = true},
+                {.key = "radius", .unit = Unit::length, .range = positive, .description = "radius (m)", .required = true}}});
+  s.push_back({"precracks[i]", "a pre-crack: bonds crossing it are removed",
+               {{.key = "segment", .type = VT::mapping, .description = "2D: a segment", .required = true, .one_of = "crack", .dimension = 2},
+                {.key = "rectangle", .type = VT::mapping, .description = "3D: a parallelogram", .required = true, .one_of = "crack",
+                 .dimension = 3}}});
+  s.push_back({"precracks[i].segment", "segment from `from` to `to`",
+               {{.key = "from", .type = VT::point, .description = "first end (m)", .required = true},
+                {.key = "to", .type = VT::point, .description = "second end (m)", .required = true}}});
+  s.push_back({"precracks[i].rectangle", "parallelogram origin + s·edge1 + t·edge2, s, t ∈ [0, 1]",
+               {{.key = "origin", .type = VT::point, .description = "a corner (m)", .required = true},
+                {.key = "edge1", .type = VT::point, .description = "first edge vector (m)", .required = true},
+                {.key = "edge2", .type = VT::point, .description = "second edge vector (m)", .required = true}}});
+  s.push_back({"node_sets.<name>", "a named set of points",
+               {{.key = "shape", .type = VT::mapping, .description = "points inside this shape (see shape)", .required = true, .one_of = "source"},
+                {.key = "ids_file", .type = VT::text, .description = "text file of 0-based point ids; relative to the deck",
+                 .required = true, .one_of = "source"},
+                {.key = "bodies", .type = VT::names, .description = "with shape: only points of these bodies (default all)"}}});
+  s.push_back({"initial_conditions[i]", "initial displacement or velocity, functions of x, y, z",
+               with_node_set({{.key = "displacement", .type = VT::mapping, .description = "components (m)", .required = true, .one_of = "kind"},
+                              {.key = "velocity", .type = VT::mapping, .description = "components (m/s)", .required = true, .one_of = "kind"}},
+                             false)});
+  s.push_back({"initial_conditions[i].displacement", "initial displacement (m)", component_keys(Unit::length, VT::static_expression)});
+  s.push_back({"initial_conditions[i].velocity", "initial velocity (m/s)", component_keys(Unit::velocity, VT::static_expression)});
+  s.push_back({"boundary_conditions[i]", "prescribed displacement or velocity, functions of x, y, z, t",
+               with_node_set({{.key = "displacement", .type = VT::mapping, .description = "components (m)", .required = true, .one_of = "kind"},
+                              {.key = "velocity", .type = VT::mapping, .description = "components (m/s)", .required = true, .one_of = "kind"}},
+                             true)});
+  s.push_back({"boundary_conditions[i].displacement", "prescribed displacement (m)", component_keys(Unit::length, VT::expression)});
+  s.push_back({"boundary_conditions[i].velocity", "prescribed velocity (m/s)", component_keys(Unit::velocity, VT::expression)});
+  s.push_back({"body_forces[i]", "force per volume (N/m^3), functions of x, y, z, t",
+               with_node_set(component_keys(Unit::force_density, VT::expression), false)});
+  s.push_back({"solver", "explicit central-difference (velocity Verlet) time integration",
+               {{.key = "end_time", .unit = Unit::time, .range = positive, .description = "simulated time (s); or num_steps",
+                 .required = true, .one_of = "duration"},
+                {.key = "num_steps", .type = VT::integer, .range = at_least_one, .description = "number of steps; or end_time",
+                 .required = true, .one_of = "duration"},
+                {.key = "time_step", .unit = Unit::time, .range = positive,
+                 .description = "fixed Δt (s); default safety_factor × stable Δt"},
+                {.key = "safety_factor", .default_yaml = "0.8", .range = {0, 1, true, false},
+                 .description = "fraction of the stable time step"}}});
+  s.push_back({"output", "what is written, relative to the deck's folder",
+               {{.key = "directory", .type = VT::text, .default_yaml = "output", .description = "output folder, relative to the deck"},
+                {.key = "exodus", .type = VT::mapping, .description = "Exodus II fields (see output.exodus); omit for none"},
+                {.key = "history", .type = VT::mapping, .description = "CSV time history (see output.history); omit for none"},
+                {.key = "progress", .type = VT::boolean, .default_yaml = "true", .description = "print progress to the terminal"}}});
+  s.push_back({"output.exodus", "Exodus II field output",
+               {{.key = "every", .type = VT::integer, .default_yaml = "100", .range = at_least_one, .description = "steps between frames"},
+                {.key = "file", .type = VT::text, .default_yaml = "results.e", .description = "file name in the output folder"}}});
+  s.push_back({"output.history", "CSV time history: energies, reactions, probes",
+               {{.key = "every", .type = VT::integer, .default_yaml = "10", .range = at_least_one, .description = "steps between rows"},
+                {.key = "file", .type = VT::text, .default_yaml = "history.csv", .description = "file name in the output folder"},
+                {.key = "reaction", .type = VT::names, .description = "node sets whose reaction force is recorded"},
+                {.key = "probes", .type = VT::sequence, .description = "point samples (see output.history.probes[i])"}}});
+  s.push_back({"output.history.probes[i]", "the value of a field at the point nearest to a position",
+               {{.key = "name", .type = VT::text, .description = "column name", .required = true},
+                {.key = "point", .type = VT::point, .description = "position (m)", .required = true},
+                {.key = "field", .type = VT::choice, .description = "sampled field", .required = true,
+                 .choices = {"displacement_x", "displacement_y", "displacement_z", "velocity_x", "velocity_y", "velocity_z",
+                             "damage", "dilatation"}}}});
+  return s;
+}
+
+}  // namespace
+
+const std::vector<SectionSpec>& deck_sections() {
+  static const std::vector<SectionSpec> sections = make_sections();
+  return sections;
+}
+
+const SectionSpec& deck_section(std::string_view path) {
+  for (const SectionSpec& section : deck_sections())
+    if (section.path == path) return section;
+  PERIDOT_REQUIRE(false, "no deck section " + std::string(path));
+}
+
+}  // namespace peridot

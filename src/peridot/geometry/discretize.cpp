@@ -1,0 +1,179 @@
+#include "peridot/geometry/discretize.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+
+namespace peridot {
+
+double uniform01(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53;
+}
+
+namespace {
+
+struct RawPoint {
+  Vec3 x;
+  double volume;
+  std::int32_t block;
+  std::uint64_t morton;
+};
+
+// Interleaves the low 21 bits of three cell indices: points close in space get close codes.
+std::uint64_t morton_code(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  auto spread = [](std::uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+  };
+  return spread(a) | spread(b) << 1 | spread(c) << 2;
+}
+
+// A lattice site inside several bodies belongs to the first of them (bodies share one lattice).
+bool claimed_by_earlier_body(const Problem& problem, std::int32_t block, Vec3 p) {
+  for (std::int32_t b = 0; b < block; ++b) {
+    const BodySpec& earlier = problem.bodies[b];
+    if (earlier.shape && earlier.shape->contains(p, problem.dimension)) return true;
+  }
+  return false;
+}
+
+void fill_shape(const Problem& problem, std::int32_t block, std::vector<RawPoint>& out, std::uint64_t& rng) {
+  const BodySpec& body = problem.bodies[block];
+  const int dim = problem.dimension;
+  const double dx = problem.spacing;
+  const Vec3 origin = problem.lattice_origin;
+  const BoundingBox box = body.shape->bounds(dim);
+  long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int d = 0; d < dim; ++d) {
+    lo[d] = static_cast<long>(std::floor((box.lo[d] - origin[d]) / dx - 0.5)) - 1;
+    hi[d] = static_cast<long>(std::ceil((box.hi[d] - origin[d]) / dx - 0.5)) + 1;
+  }
+  const double volume = dim == 3 ? dx * dx * dx : dx * dx * problem.thickness;
+  for (long k = lo[2]; k <= hi[2]; ++k)
+    for (long j = lo[1]; j <= hi[1]; ++j)
+      for (long i = lo[0]; i <= hi[0]; ++i) {
+        Vec3 p{origin.x + (i + 0.5) * dx, origin.y + (j + 0.5) * dx, dim == 3 ? origin.z + (k + 0.5) * dx : 0.0};
+        if (!body.shape->contains(p, dim) || claimed_by_earlier_body(problem, block, p)) continue;
+        if (problem.jitter > 0)
+          for (int d = 0; d < dim; ++d) p[d] += (2 * uniform01(rng) - 1) * problem.jitter * dx;
+        out.push_back({p, volume, block, 0});
+      }
+}
+
+void read_point_file(const Problem& problem, const BodySpec& body, std::int32_t block, std::vector<RawPoint>& out) {
+  std::ifstream in(body.points_file);
+  if (!in) throw InputError(body.pos, "bodies." + body.name + ": cannot open points_file '" + body.points_file + "'");
+  const int dim = problem.dimension;
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    auto hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    std::istringstream fields(line);
+    std::vector<double> values;
+    double value;
+    while (fields >> value) values.push_back(value);
+    if (!fields.eof()) {
+      throw InputError(SourcePos{body.points_file, line_number, 1},
+                       "bodies." + body.name + ": not a number in points_file");
+    }
+    if (values.empty()) continue;
+    const std::size_t expected = static_cast<std::size_t>(dim) + 1;
+    if (values.size() != expected && values.size() != expected + 1) {
+      throw InputError(SourcePos{body.points_file, line_number, 1},
+                       "bodies." + body.name + ": expected " + std::to_string(expected) + " or " +
+                           std::to_string(expected + 1) + " columns (x y" + (dim == 3 ? " z" : "") +
+                           " volume [block]), found " + std::to_string(values.size()));
+    }
+    if (values.size() == expected + 1 && body.block_filter && static_cast<int>(values[expected]) != *body.block_filter)
+      continue;
+    Vec3 p{values[0], values[1], dim == 3 ? values[2] : 0.0};
+    double volume = values[dim];
+    if (!(volume > 0)) {
+      throw InputError(SourcePos{body.points_file, line_number, 1},
+                       "bodies." + body.name + ": point volume must be positive");
+    }
+    out.push_back({p, volume, block, 0});
+  }
+}
+
+}  // namespace
+
+Discretization discretize(const Problem& problem) {
+  std::vector<RawPoint> raw;
+  std::uint64_t rng = problem.seed;
+  std::vector<Diagnostic> errors;
+  for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
+    const BodySpec& body = problem.bodies[b];
+    const std::size_t before = raw.size();
+    if (body.shape)
+      fill_shape(problem, static_cast<std::int32_t>(b), raw, rng);
+    else
+      read_point_file(problem, body, static_cast<std::int32_t>(b), raw);
+    if (raw.size() == before)
+      errors.push_back({body.pos, "bodies." + body.name + ": the body contains no point (is it smaller than the spacing?)"});
+  }
+  if (!errors.empty()) throw InputError(errors);
+
+  // Sort key: block, then Morton code of the point's cell on a grid of the smallest spacing.
+  Vec3 lo{1e300, 1e300, 1e300};
+  double min_spacing = 1e300;
+  for (const RawPoint& p : raw) {
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], p.x[d]);
+    double side = problem.dimension == 3 ? std::cbrt(p.volume) : std::sqrt(p.volume / problem.thickness);
+    min_spacing = std::min(min_spacing, side);
+  }
+  for (RawPoint& p : raw) {
+    auto cell = [&](int d) { return static_cast<std::uint32_t>(std::max(0.0, (p.x[d] - lo[d]) / min_spacing)); };
+    p.morton = morton_code(cell(0), cell(1), problem.dimension == 3 ? cell(2) : 0);
+  }
+  std::vector<std::uint32_t> order(raw.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    if (raw[a].block != raw[b].block) return raw[a].block < raw[b].block;
+    return raw[a].morton < raw[b].morton;
+  });
+
+  Discretization disc;
+  disc.dimension = problem.dimension;
+  for (const BodySpec& body : problem.bodies) disc.block_names.push_back(body.name);
+  disc.x.resize(raw.size());
+  disc.volume.resize(raw.size());
+  disc.block.resize(raw.size());
+  disc.input_id.resize(raw.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const RawPoint& p = raw[order[k]];
+    disc.x.set(k, p.x);
+    disc.volume[k] = p.volume;
+    disc.block[k] = p.block;
+    disc.input_id[k] = order[k];
+  }
+  return disc;
+}
+
+std::vector<BlockRange> block_ranges(const Discretization& disc) {
+  std::vector<BlockRange> ranges(disc.block_names.size());
+  const std::size_t n = disc.num_points();
+  std::size_t i = 0;
+  while (i < n) {
+    std::size_t j = i;
+    while (j < n && disc.block[j] == disc.block[i]) ++j;
+    ranges[disc.block[i]] = {i, j};
+    i = j;
+  }
+  return ranges;
+}
+
+}  // namespace peridot

@@ -1,0 +1,71 @@
+#include "peridot/loads/node_sets.hpp"
+
+#include <algorithm>
+#include <fstream>
+
+namespace peridot {
+
+namespace {
+
+std::vector<std::uint32_t> read_ids(const NodeSetSpec& spec, const Discretization& disc) {
+  std::ifstream in(spec.ids_file);
+  if (!in) throw InputError(spec.pos, "node_sets." + spec.name + ": cannot open ids_file '" + spec.ids_file + "'");
+  // Ids refer to the order in which points were generated or read; map them to storage order.
+  std::vector<std::uint32_t> storage_of(disc.num_points());
+  for (std::size_t i = 0; i < disc.num_points(); ++i) storage_of[disc.input_id[i]] = static_cast<std::uint32_t>(i);
+  std::vector<std::uint32_t> points;
+  long long id;
+  while (in >> id) {
+    if (id < 0 || static_cast<std::size_t>(id) >= disc.num_points())
+      throw InputError(spec.pos, "node_sets." + spec.name + ": id " + std::to_string(id) + " in '" + spec.ids_file +
+                                     "' is outside 0 … " + std::to_string(disc.num_points() - 1));
+    points.push_back(storage_of[id]);
+  }
+  if (!in.eof()) throw InputError(spec.pos, "node_sets." + spec.name + ": '" + spec.ids_file + "' holds a non-integer");
+  return points;
+}
+
+std::vector<std::uint32_t> select_in_shape(const NodeSetSpec& spec, const Problem& problem, const Discretization& disc) {
+  std::vector<char> body_selected(disc.block_names.size(), spec.bodies.empty());
+  for (const std::string& body : spec.bodies)
+    for (std::size_t b = 0; b < disc.block_names.size(); ++b)
+      if (disc.block_names[b] == body) body_selected[b] = 1;
+  std::vector<std::uint32_t> points;
+  for (std::size_t i = 0; i < disc.num_points(); ++i)
+    if (body_selected[disc.block[i]] && spec.shape->contains(disc.x.get(i), problem.dimension))
+      points.push_back(static_cast<std::uint32_t>(i));
+  return points;
+}
+
+}  // namespace
+
+std::vector<NodeSet> build_node_sets(const Problem& problem, const Discretization& disc) {
+  std::vector<NodeSet> sets;
+  std::vector<Diagnostic> errors;
+  for (const NodeSetSpec& spec : problem.node_sets) {
+    NodeSet set{spec.name, {}};
+    try {
+      set.points = spec.shape ? select_in_shape(spec, problem, disc) : read_ids(spec, disc);
+    } catch (const InputError& e) {
+      errors.insert(errors.end(), e.diagnostics().begin(), e.diagnostics().end());
+      continue;
+    }
+    std::sort(set.points.begin(), set.points.end());
+    set.points.erase(std::unique(set.points.begin(), set.points.end()), set.points.end());
+    if (set.points.empty())
+      errors.push_back({spec.pos, "node_sets." + spec.name + ": selects no point (check its shape against the bodies)"});
+    sets.push_back(std::move(set));
+  }
+  if (!errors.empty()) throw InputError(errors);
+  return sets;
+}
+
+const std::vector<std::uint32_t>& points_of(const std::vector<NodeSet>& sets, const std::string& name,
+                                            const std::vector<std::uint32_t>& all_points) {
+  if (name.empty()) return all_points;
+  for (const NodeSet& set : sets)
+    if (set.name == name) return set.points;
+  PERIDOT_REQUIRE(false, "unknown node set '" + name + "'");
+}
+
+}  // namespace peridot

@@ -1,0 +1,32 @@
+#pragma once
+// Linear peridynamic solid (LPS), ordinary state-based.
+// Silling et al. (2007); papers/003 slides "Linear peridynamic solid"; reference/README.md:
+//   m = Σ ω ξ² V,  θ = (3/m) Σ ω ξ e V,  t = (3Kθ/m) ω ξ + (15G/m) ω e^d,  e^d = e − θξ/3,
+//   W = Kθ²/2 + (15G/2m) Σ ω (e^d)² V.
+// 2D (reference/algorithms.md §6, derived there and checked by the patch tests):
+//   θ₂ = (2/m) Σ ω ξ e V (= ε₁₁ + ε₂₂ for homogeneous strain),
+//   t = (ω/m)[2K′ θ₂ ξ + 8G (e − θ₂ξ/2)],  W = K′θ₂²/2 + (4G/m) Σ ω (e − θ₂ξ/2)² V,
+//   K′ = K + G/3 (plane strain) or 9KG/(3K + 4G) (plane stress).
+// One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v, α_d) = (3, 3K, 15G) in 3D
+// and (2, 2K′, 8G) in 2D; W = α_v θ²/(2n) + (α_d/2m) Σ ω (e − θξ/n)² V. Since Σ ω ξ (e − θξ/n) V = 0,
+// t = ∂W/∂e exactly.
+#include "peridot/materials/material.hpp"
+
+namespace peridot {
+
+struct Lps {
+  static constexpr bool uses_dilatation = true;
+
+  static double force_scalar(const MaterialParams& p, double e, double xi, double omega, double theta, double m) {
+    return omega / m * (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - theta * xi / p.dilatation_factor));
+  }
+  static double bond_energy(const MaterialParams& p, double e, double xi, double omega, double theta, double m) {
+    const double ed = e - theta * xi / p.dilatation_factor;
+    return 0.5 * p.alpha_deviatoric / m * omega * ed * ed;
+  }
+  static double point_energy(const MaterialParams& p, double theta) {
+    return p.alpha_volumetric * theta * theta / (2 * p.dilatation_factor);
+  }
+};
+
+}  // namespace peridot

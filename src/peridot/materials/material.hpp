@@ -1,0 +1,54 @@
+#pragma once
+// Resolved per-block material parameters and the influence function. The kernels (pmb.hpp, lps.hpp)
+// are tiny functors that say what a bond force and a bond energy are; the bond loops that call them
+// live in solvers/internal_force.cpp.
+#include <cmath>
+#include <limits>
+
+#include "peridot/deck/problem.hpp"
+
+namespace peridot {
+
+/// Everything a kernel needs about one block, in SI units, computed once at set-up.
+struct MaterialParams {
+  ModelKind model = ModelKind::pmb;
+  InfluenceKind influence = InfluenceKind::constant;
+  int dimension = 3;
+  double density = 0;  ///< ρ (kg/m³)
+  double horizon = 0;  ///< δ (m)
+  ElasticConstants elastic;
+  /// PMB micromodulus c0 (N/m⁶ in 3D): bond micromodulus c(ξ) = c0 ω(ξ).
+  double micromodulus = 0;
+  /// LPS: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)], θ = (n/m) Σ ω ξ e V, n = dilatation_factor (3 or 2).
+  double alpha_volumetric = 0;
+  double alpha_deviatoric = 0;
+  double dilatation_factor = 3;
+  /// Bond fails when its stretch exceeds this; +∞ without damage.
+  double critical_stretch = std::numeric_limits<double>::infinity();
+  /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
+  /// the Silling–Askari stable time step estimate for every model.
+  double stable_micromodulus = 0;
+};
+
+/// Builds the block parameters from the deck. Throws InputError when the fracture energy cannot give a
+/// critical stretch (non-positive result).
+MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const Problem& problem);
+
+/// The 2D bulk modulus K′ = λ′ + G of the in-plane problem: plane strain K + G/3, plane stress
+/// 9KG/(3K + 4G) = E/(2(1 − ν)). (reference/algorithms.md §6)
+double planar_bulk_modulus(const ElasticConstants& c, PlaneKind plane);
+
+/// ω(ξ): 1, δ/ξ, or exp(−ξ²/δ²).
+inline double influence(InfluenceKind kind, double xi, double horizon) {
+  switch (kind) {
+    case InfluenceKind::constant: return 1.0;
+    case InfluenceKind::inverse_distance: return horizon / xi;
+    case InfluenceKind::gaussian: return std::exp(-(xi * xi) / (horizon * horizon));
+  }
+  return 1.0;
+}
+
+/// ∫₀^δ ω(ξ) ξ^p dξ in closed form, for the calibration of the constants (p = 2, 3, 4).
+double influence_moment(InfluenceKind kind, double horizon, int p);
+
+}  // namespace peridot

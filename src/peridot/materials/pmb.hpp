@@ -1,0 +1,32 @@
+#pragma once
+// Prototype microelastic brittle (PMB) bond-based model.
+// Silling & Askari (2005); papers/003 slides "PMB material model":
+//   pair force f = c s (y′ − y)/|y′ − y|, s = (|Y| − |ξ|)/|ξ|, T⟨ξ⟩ = ½ f, pair energy w = ½ c s² |ξ|.
+// With an influence function the micromodulus is c(ξ) = c0 ω(ξ), c0 calibrated so that an isotropic
+// strain gives the classical energy density (3D: W = 9Ks²/2 → c0 = 9K / (2π ∫₀^δ ω ξ³ dξ), which is
+// 18K/(πδ⁴) for ω = 1; 2D, thickness h: W = 2K′s² → c0 = 4K′ / (πh ∫₀^δ ω ξ² dξ), 12K′/(πhδ³) for ω = 1).
+// Bond-based models force ν = 1/4 (3D, plane strain) or 1/3 (plane stress).
+#include "peridot/materials/material.hpp"
+
+namespace peridot {
+
+struct Pmb {
+  static constexpr bool uses_dilatation = false;
+
+  /// Scalar force state t = T⟨ξ⟩·M (N/m⁶) of a bond of reference length xi and extension e.
+  static double force_scalar(const MaterialParams& p, double e, double xi, double omega, double /*theta*/,
+                             double /*m*/) {
+    return 0.5 * p.micromodulus * omega * e / xi;
+  }
+  /// This point's share of the bond energy density per unit neighbour volume (J/m⁶): ½ · ½ c s² ξ.
+  static double bond_energy(const MaterialParams& p, double e, double xi, double omega, double /*theta*/,
+                            double /*m*/) {
+    return 0.25 * p.micromodulus * omega * e * e / xi;
+  }
+  static double point_energy(const MaterialParams&, double /*theta*/) { return 0; }
+};
+
+/// The Poisson ratio a bond-based model implies: 1/3 in plane stress, 1/4 otherwise.
+constexpr double pmb_implied_poisson_ratio(PlaneKind plane) { return plane == PlaneKind::stress ? 1.0 / 3.0 : 0.25; }
+
+}  // namespace peridot

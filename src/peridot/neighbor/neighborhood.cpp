@@ -1,0 +1,135 @@
+#include "peridot/neighbor/neighborhood.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace peridot {
+
+namespace {
+
+double orientation(Vec3 a, Vec3 b, Vec3 c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); }
+
+bool segments_cross(Vec3 p, Vec3 q, Vec3 a, Vec3 b) {
+  double d1 = orientation(a, b, p), d2 = orientation(a, b, q);
+  double d3 = orientation(p, q, a), d4 = orientation(p, q, b);
+  return ((d1 < 0 && d2 > 0) || (d1 > 0 && d2 < 0)) && ((d3 <= 0 && d4 >= 0) || (d3 >= 0 && d4 <= 0));
+}
+
+bool crosses_rectangle(Vec3 p, Vec3 q, const PrecrackSpec& c) {
+  Vec3 n = cross(c.edge1, c.edge2);
+  double dp = dot(n, p - c.origin), dq = dot(n, q - c.origin);
+  if (!((dp < 0 && dq > 0) || (dp > 0 && dq < 0))) return false;
+  Vec3 hit = p + (dp / (dp - dq)) * (q - p);
+  Vec3 r = hit - c.origin;
+  // Solve r = s·e1 + t·e2 in the plane through the 2×2 Gram system.
+  double a11 = dot(c.edge1, c.edge1), a12 = dot(c.edge1, c.edge2), a22 = dot(c.edge2, c.edge2);
+  double b1 = dot(r, c.edge1), b2 = dot(r, c.edge2);
+  double det = a11 * a22 - a12 * a12;
+  double s = (b1 * a22 - b2 * a12) / det, t = (a11 * b2 - a12 * b1) / det;
+  return s >= 0 && s <= 1 && t >= 0 && t <= 1;
+}
+
+struct CellGrid {
+  Vec3 lo;
+  double size = 1;
+  long n[3] = {1, 1, 1};
+  std::vector<std::uint64_t> start;   // CSR over cells
+  std::vector<std::uint32_t> points;  // point indices, by cell, increasing within a cell
+
+  long coord(double x, int d) const {
+    return std::clamp(static_cast<long>((x - lo[d]) / size), 0L, n[d] - 1);
+  }
+  long index(long i, long j, long k) const { return (k * n[1] + j) * n[0] + i; }
+};
+
+CellGrid bin_points(const Discretization& disc, double cell_size) {
+  CellGrid grid;
+  const std::size_t count = disc.num_points();
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (std::size_t i = 0; i < count; ++i)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], disc.x(i, d));
+      hi[d] = std::max(hi[d], disc.x(i, d));
+    }
+  grid.lo = lo;
+  grid.size = cell_size;
+  for (int d = 0; d < 3; ++d) grid.n[d] = std::max(1L, static_cast<long>((hi[d] - lo[d]) / cell_size) + 1);
+  const std::size_t cells = static_cast<std::size_t>(grid.n[0] * grid.n[1] * grid.n[2]);
+  std::vector<std::uint64_t> cell_of(count);
+  grid.start.assign(cells + 1, 0);
+  for (std::size_t i = 0; i < count; ++i) {
+    cell_of[i] = grid.index(grid.coord(disc.x(i, 0), 0), grid.coord(disc.x(i, 1), 1), grid.coord(disc.x(i, 2), 2));
+    ++grid.start[cell_of[i] + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) grid.start[c + 1] += grid.start[c];
+  grid.points.resize(count);
+  std::vector<std::uint64_t> fill(grid.start.begin(), grid.start.end() - 1);
+  for (std::size_t i = 0; i < count; ++i) grid.points[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  return grid;
+}
+
+}  // namespace
+
+bool bond_crosses(const PrecrackSpec& crack, Vec3 p, Vec3 q, int dimension) {
+  if (crack.is_segment) return dimension == 2 && segments_cross(p, q, crack.a, crack.b);
+  return dimension == 3 && crosses_rectangle(p, q, crack);
+}
+
+BondList build_neighborhood(const Discretization& disc, const NeighborhoodOptions& options) {
+  const std::size_t count = disc.num_points();
+  const int dim = disc.dimension;
+  const double max_horizon = *std::max_element(options.horizon_of_block.begin(), options.horizon_of_block.end());
+  const double reach = max_horizon + options.partial_volume_radius;
+  const CellGrid grid = bin_points(disc, reach);
+
+  // Visits the neighbours of i in a fixed order; the caller gets them sorted afterwards.
+  auto for_each_neighbor = [&](std::size_t i, auto&& visit) {
+    const Vec3 xi = disc.x.get(i);
+    const double horizon_i = options.horizon_of_block[disc.block[i]];
+    long c[3];
+    for (int d = 0; d < 3; ++d) c[d] = grid.coord(xi[d], d);
+    for (long k = std::max(0L, c[2] - 1); k <= std::min(grid.n[2] - 1, c[2] + 1); ++k)
+      for (long j = std::max(0L, c[1] - 1); j <= std::min(grid.n[1] - 1, c[1] + 1); ++j)
+        for (long l = std::max(0L, c[0] - 1); l <= std::min(grid.n[0] - 1, c[0] + 1); ++l) {
+          const long cell = grid.index(l, j, k);
+          for (std::uint64_t s = grid.start[cell]; s < grid.start[cell + 1]; ++s) {
+            const std::uint32_t other = grid.points[s];
+            if (other == i) continue;
+            const Vec3 xj = disc.x.get(other);
+            const double horizon = std::max(horizon_i, options.horizon_of_block[disc.block[other]]);
+            const double cutoff = horizon + options.partial_volume_radius;
+            const Vec3 bond = xj - xi;
+            if (dot(bond, bond) > cutoff * cutoff) continue;
+            if (options.partial_volume_radius > 0 &&
+                partial_volume_factor(norm(bond), horizon, options.partial_volume_radius) <= 0)
+              continue;
+            bool cut = false;
+            for (const PrecrackSpec& crack : options.precracks) cut = cut || bond_crosses(crack, xi, xj, dim);
+            if (!cut) visit(other);
+          }
+        }
+  };
+
+  BondList bonds;
+  bonds.offsets.assign(count + 1, 0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint64_t n = 0;
+    for_each_neighbor(i, [&](std::uint32_t) { ++n; });
+    bonds.offsets[i + 1] = n;
+  }
+  for (std::size_t i = 0; i < count; ++i) bonds.offsets[i + 1] += bonds.offsets[i];
+  bonds.neighbors.resize(bonds.offsets[count]);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint32_t* out = bonds.neighbors.data() + bonds.offsets[i];
+    std::size_t n = 0;
+    for_each_neighbor(i, [&](std::uint32_t j) { out[n++] = j; });
+    std::sort(out, out + n);
+  }
+  bonds.broken.assign(bonds.neighbors.size(), 0);
+  return bonds;
+}
+
+}  // namespace peridot

@@ -1,0 +1,32 @@
+#pragma once
+// Bond lists: every pair of points closer than the horizon, found with a cell list, stored in CSR and
+// sorted by neighbour index; bonds crossing a pre-crack are left out.
+#include <vector>
+
+#include "peridot/deck/problem.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+struct NeighborhoodOptions {
+  std::vector<double> horizon_of_block;  ///< δ per block (m); a pair bonds within max(δ_i, δ_j)
+  /// With partial volumes, bonds reach to δ + r, r = ½Δx, and the neighbour volume is scaled by
+  /// partial_volume_factor() (cells cut by the horizon sphere count in proportion).
+  double partial_volume_radius = 0;
+  std::vector<PrecrackSpec> precracks;
+};
+
+BondList build_neighborhood(const Discretization& disc, const NeighborhoodOptions& options);
+
+/// Fraction of a neighbour cell of half-width r at distance ξ inside a horizon δ (linear ramp, 1 well
+/// inside, 0 beyond δ + r). r = 0 means no correction.
+inline double partial_volume_factor(double xi, double horizon, double r) {
+  if (r <= 0 || xi <= horizon - r) return 1.0;
+  if (xi >= horizon + r) return 0.0;
+  return (horizon + r - xi) / (2 * r);
+}
+
+/// True when the segment p → q crosses the pre-crack (2D segment or 3D rectangle).
+bool bond_crosses(const PrecrackSpec& crack, Vec3 p, Vec3 q, int dimension);
+
+}  // namespace peridot

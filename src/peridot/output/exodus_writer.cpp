@@ -1,0 +1,341 @@
+#include "peridot/output/exodus_writer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <utility>
+
+#include <exodusII.h>
+#include <netcdf.h>
+
+#include "peridot/core/error.hpp"
+
+namespace peridot {
+
+namespace {
+
+/// Exodus keeps the last error per process; turn it into a readable sentence.
+std::string exodus_message(int status) {
+  const char* msg = nullptr;
+  const char* func = nullptr;
+  int code = 0;
+  ex_get_err(&msg, &func, &code);
+  std::string text;
+  if (msg && *msg) text = msg;
+  if (func && *func) text += std::string(text.empty() ? "" : " ") + "(in " + func + ")";
+  // The code is a netCDF status (negative), an errno (positive) or an Exodus code (1000+); nc_strerror
+  // knows the first two.
+  if (code != 0 && code < 1000) text += std::string(text.empty() ? "" : ": ") + nc_strerror(code);
+  if (text.empty()) text = "status " + std::to_string(status);
+  return text;
+}
+
+[[noreturn]] void throw_exodus(const std::string& path, const char* what, int status) {
+  throw std::runtime_error("Exodus output '" + path + "': " + what + " failed: " + exodus_message(status));
+}
+
+/// Exodus takes names as char*[] (non-const, for historical reasons); keep the strings alive alongside.
+std::vector<char*> name_pointers(std::vector<std::string>& names) {
+  std::vector<char*> out;
+  out.reserve(names.size());
+  for (auto& n : names) out.push_back(n.data());
+  return out;
+}
+
+std::vector<std::string> nodal_variable_names(int dimension) {
+  static const char* const axis[] = {"_x", "_y", "_z"};
+  std::vector<std::string> names;
+  for (const char* field : {"displacement", "velocity", "force_density"})
+    for (int d = 0; d < dimension; ++d) names.push_back(std::string(field) + axis[d]);
+  for (const char* scalar : {"damage", "dilatation", "weighted_volume", "volume"}) names.emplace_back(scalar);
+  return names;
+}
+
+}  // namespace
+
+double ExodusWriter::equivalent_radius(double volume, int dimension, double thickness) {
+  if (dimension == 2) return std::sqrt(volume / (std::numbers::pi * thickness));
+  return std::cbrt(3.0 * volume / (4.0 * std::numbers::pi));
+}
+
+void ExodusWriter::check(int status, const char* what) const {
+  if (status < 0) throw_exodus(path_, what, status);
+}
+
+ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
+                           const std::vector<NodeSetOutput>& node_sets, const std::string& title,
+                           double thickness)
+    : path_(path), dimension_(disc.dimension), num_points_(disc.num_points()) {
+  const std::size_t n = num_points_;
+  PERIDOT_REQUIRE(dimension_ == 2 || dimension_ == 3, "Exodus output needs dimension 2 or 3");
+  PERIDOT_REQUIRE(n > 0, "Exodus output of an empty discretization");
+  // The default (32-bit integer) Exodus API numbers nodes with int.
+  PERIDOT_REQUIRE(n < static_cast<std::size_t>(std::numeric_limits<int>::max()),
+                  "too many points for 32-bit Exodus ids");
+  PERIDOT_REQUIRE(disc.x.size() == n, "disc.x and disc.volume differ in size");
+  PERIDOT_REQUIRE(disc.block.empty() || disc.block.size() == n, "disc.block and disc.volume differ in size");
+  PERIDOT_REQUIRE(disc.input_id.empty() || disc.input_id.size() == n,
+                  "disc.input_id and disc.volume differ in size");
+  PERIDOT_REQUIRE(dimension_ == 3 || thickness > 0, "2D Exodus output needs a positive thickness");
+  for (const auto& set : node_sets)
+    for (std::uint32_t p : set.points)
+      PERIDOT_REQUIRE(p < n, "node set '" + set.name + "' names point " + std::to_string(p) + " of " +
+                                 std::to_string(n));
+
+  // Blocks present, ascending; an empty disc.block means everything is block 0.
+  auto block_of = [&](std::size_t i) { return disc.block.empty() ? 0 : disc.block[i]; };
+  std::vector<std::int32_t> blocks;
+  for (std::size_t i = 0; i < n; ++i) {
+    PERIDOT_REQUIRE(block_of(i) >= 0, "negative block index");
+    blocks.push_back(block_of(i));
+  }
+  std::sort(blocks.begin(), blocks.end());
+  std::vector<std::size_t> block_count;  // elements per entry of `blocks` once deduplicated
+  {
+    std::vector<std::int32_t> unique;
+    for (std::size_t k = 0; k < blocks.size(); ++k) {
+      if (k == 0 || blocks[k] != blocks[k - 1]) {
+        unique.push_back(blocks[k]);
+        block_count.push_back(0);
+      }
+      ++block_count.back();
+    }
+    blocks = std::move(unique);
+  }
+  // Element order: stable counting sort of the points by block.
+  element_points_.resize(n);
+  {
+    std::vector<std::size_t> next(blocks.size(), 0);
+    for (std::size_t b = 1; b < blocks.size(); ++b) next[b] = next[b - 1] + block_count[b - 1];
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto b = std::lower_bound(blocks.begin(), blocks.end(), block_of(i)) - blocks.begin();
+      element_points_[next[b]++] = static_cast<std::uint32_t>(i);
+    }
+  }
+  // Node ids: generation order + 1 where known, else point index + 1; they must be unique for readers.
+  std::vector<int> node_id(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t id = disc.input_id.empty() ? i + 1 : std::size_t{disc.input_id[i]} + 1;
+    PERIDOT_REQUIRE(id <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+                    "disc.input_id does not fit a 32-bit Exodus id");
+    node_id[i] = static_cast<int>(id);
+  }
+  if (!disc.input_id.empty()) {
+    std::vector<int> sorted = node_id;
+    std::sort(sorted.begin(), sorted.end());
+    PERIDOT_REQUIRE(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(),
+                    "disc.input_id has duplicates");
+  }
+
+  variable_names_ = nodal_variable_names(dimension_);
+  volume_.assign(disc.volume.begin(), disc.volume.end());
+  buffer_.assign(n, 0.0);
+
+  // Doubles on disk and in the API. EX_LARGE_MODEL (netCDF 64-bit offset) lifts the 2 GiB limits per
+  // variable and stores each nodal variable on its own. Not in share mode (EX_NOSHARE, which is what
+  // ex_create does anyway): netCDF then keeps the record count in memory until ex_update, which is what
+  // makes frames appear whole (see write_frame).
+  int comp_ws = sizeof(double);
+  int io_ws = sizeof(double);
+  ex_opts(EX_DEFAULT);  // no abort, no printing: every failure becomes an exception with the message
+  exoid_ = ex_create(path.c_str(), EX_CLOBBER | EX_LARGE_MODEL | EX_NOSHARE, &comp_ws, &io_ws);
+  if (exoid_ < 0) {
+    exoid_ = -1;
+    throw_exodus(path_, "creating the file", -1);
+  }
+
+  try {
+    // Exodus cuts names at 32 characters unless told the longest one first (names are stored in the file up
+    // to the netCDF limit; readers ask the file how long its names are).
+    std::size_t longest_name = MAX_NAME_LENGTH;
+    for (const auto& name : disc.block_names) longest_name = std::max(longest_name, name.size());
+    for (const auto& set : node_sets) longest_name = std::max(longest_name, set.name.size());
+    PERIDOT_REQUIRE(longest_name <= NC_MAX_NAME, "a block or node set name is longer than 256 characters");
+    check(ex_set_max_name_length(exoid_, static_cast<int>(longest_name)), "ex_set_max_name_length");
+
+    ex_init_params init{};
+    // Exodus titles hold at most MAX_LINE_LENGTH characters; longer ones are cut rather than refused.
+    title.copy(init.title, MAX_LINE_LENGTH);
+    init.num_dim = dimension_;
+    init.num_nodes = static_cast<int64_t>(n);
+    init.num_elem = static_cast<int64_t>(n);
+    init.num_elem_blk = static_cast<int64_t>(blocks.size());
+    init.num_node_sets = static_cast<int64_t>(node_sets.size());
+    init.num_node_maps = 0;  // the node number map below is the classic node_num_map, not a named map
+    check(ex_put_init_ext(exoid_, &init), "ex_put_init_ext");
+
+    {
+      std::vector<double> c[3];
+      for (int d = 0; d < dimension_; ++d) {
+        c[d].resize(n);
+        for (std::size_t i = 0; i < n; ++i) c[d][i] = disc.x(i, d);
+      }
+      check(ex_put_coord(exoid_, c[0].data(), c[1].data(), dimension_ == 3 ? c[2].data() : nullptr),
+            "ex_put_coord");
+      std::vector<std::string> coord_names{"x", "y", "z"};
+      coord_names.resize(dimension_);
+      auto ptrs = name_pointers(coord_names);
+      check(ex_put_coord_names(exoid_, ptrs.data()), "ex_put_coord_names");
+    }
+    check(ex_put_id_map(exoid_, EX_NODE_MAP, node_id.data()), "ex_put_id_map (nodes)");
+
+    std::vector<std::string> block_names;
+    std::size_t first = 0;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const ex_entity_id id = blocks[b] + 1;
+      const std::size_t count = block_count[b];
+      check(ex_put_block(exoid_, EX_ELEM_BLOCK, id, "SPHERE", static_cast<int64_t>(count), 1, 0, 0, 1),
+            "ex_put_block");
+      std::vector<int> conn(count);
+      std::vector<double> radius(count);
+      for (std::size_t e = 0; e < count; ++e) {
+        const std::uint32_t p = element_points_[first + e];
+        conn[e] = static_cast<int>(p) + 1;
+        radius[e] = equivalent_radius(disc.volume[p], dimension_, thickness);
+      }
+      check(ex_put_conn(exoid_, EX_ELEM_BLOCK, id, conn.data(), nullptr, nullptr), "ex_put_conn");
+      check(ex_put_attr(exoid_, EX_ELEM_BLOCK, id, radius.data()), "ex_put_attr");
+      std::vector<std::string> attr_names{"radius"};
+      auto attr_ptrs = name_pointers(attr_names);
+      check(ex_put_attr_names(exoid_, EX_ELEM_BLOCK, id, attr_ptrs.data()), "ex_put_attr_names");
+      const auto k = static_cast<std::size_t>(blocks[b]);
+      block_names.push_back(k < disc.block_names.size() && !disc.block_names[k].empty()
+                                ? disc.block_names[k]
+                                : "block_" + std::to_string(k));
+      first += count;
+    }
+    {
+      auto ptrs = name_pointers(block_names);
+      check(ex_put_names(exoid_, EX_ELEM_BLOCK, ptrs.data()), "ex_put_names (blocks)");
+      // Element ids = node id of the element's point, so that a reader can tell either by the same number.
+      std::vector<int> elem_id(n);
+      for (std::size_t e = 0; e < n; ++e) elem_id[e] = node_id[element_points_[e]];
+      check(ex_put_id_map(exoid_, EX_ELEM_MAP, elem_id.data()), "ex_put_id_map (elements)");
+    }
+
+    if (!node_sets.empty()) {
+      std::vector<std::string> set_names;
+      for (std::size_t s = 0; s < node_sets.size(); ++s) {
+        const ex_entity_id id = static_cast<ex_entity_id>(s + 1);
+        const auto& points = node_sets[s].points;
+        check(ex_put_set_param(exoid_, EX_NODE_SET, id, static_cast<int64_t>(points.size()), 0),
+              "ex_put_set_param");
+        if (!points.empty()) {  // an empty set has no node list variable to write into
+          std::vector<int> nodes(points.size());
+          for (std::size_t k = 0; k < points.size(); ++k) nodes[k] = static_cast<int>(points[k]) + 1;
+          check(ex_put_set(exoid_, EX_NODE_SET, id, nodes.data(), nullptr), "ex_put_set");
+        }
+        set_names.push_back(node_sets[s].name);
+      }
+      auto ptrs = name_pointers(set_names);
+      check(ex_put_names(exoid_, EX_NODE_SET, ptrs.data()), "ex_put_names (node sets)");
+    }
+
+    check(ex_put_variable_param(exoid_, EX_NODAL, static_cast<int>(variable_names_.size())),
+          "ex_put_variable_param");
+    auto var_ptrs = name_pointers(variable_names_);
+    check(ex_put_variable_names(exoid_, EX_NODAL, static_cast<int>(var_ptrs.size()), var_ptrs.data()),
+          "ex_put_variable_names");
+    // The mesh alone, with zero time steps, is a valid file from here on.
+    check(ex_update(exoid_), "ex_update");
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+ExodusWriter::ExodusWriter(ExodusWriter&& other) noexcept
+    : exoid_(std::exchange(other.exoid_, -1)),
+      path_(std::move(other.path_)),
+      dimension_(other.dimension_),
+      num_points_(other.num_points_),
+      frames_(other.frames_),
+      element_points_(std::move(other.element_points_)),
+      variable_names_(std::move(other.variable_names_)),
+      volume_(std::move(other.volume_)),
+      buffer_(std::move(other.buffer_)) {}
+
+ExodusWriter& ExodusWriter::operator=(ExodusWriter&& other) noexcept {
+  if (this != &other) {
+    release();
+    exoid_ = std::exchange(other.exoid_, -1);
+    path_ = std::move(other.path_);
+    dimension_ = other.dimension_;
+    num_points_ = other.num_points_;
+    frames_ = other.frames_;
+    element_points_ = std::move(other.element_points_);
+    variable_names_ = std::move(other.variable_names_);
+    volume_ = std::move(other.volume_);
+    buffer_ = std::move(other.buffer_);
+  }
+  return *this;
+}
+
+ExodusWriter::~ExodusWriter() { release(); }
+
+void ExodusWriter::release() noexcept {
+  if (exoid_ >= 0) ex_close(exoid_);
+  exoid_ = -1;
+}
+
+void ExodusWriter::close() {
+  if (exoid_ < 0) return;
+  const int id = std::exchange(exoid_, -1);  // closed (or unusable) whatever ex_close says
+  check(ex_close(id), "ex_close");
+}
+
+// What a reader sees if the process dies while a frame is written.
+// The file is netCDF-3 (64-bit offset) and ex_create opens it without NC_SHARE (checked: Exodus 6.02 on
+// Debian 12 calls nc_create with NC_64BIT_OFFSET|NC_CLASSIC_MODEL). Every time step is one "record" of the
+// unlimited dimension time_step, and the number of records is a single 4-byte count in the file header.
+// Without NC_SHARE, netCDF writes that count to the file only in nc_sync/nc_close (ex_update/ex_close). The
+// values of an unfinished frame may reach the file earlier (netCDF writes its 8 KiB buffer out whenever it
+// fills), but they lie beyond the record count the header states, so a reader (Exodus, netCDF4-python,
+// ParaView) sees exactly the frames whose write_frame() had returned, each with its time, and nothing of the
+// unfinished one; the file is merely longer than its header says. ExodusWriter.DeathMidFrameLeavesCompleteFrames
+// checks this with a process killed by SIGXFSZ after part of a frame went to disk. nc_sync writes the buffered values
+// before the header page with the count, so a kill inside ex_update leaves the old count or the new count
+// with its values already handed to the kernel.
+// Writing the time last adds nothing to that here; it keeps the order right for a file in share mode, where
+// the count is written as soon as a record grows, so that a reader trusting time_whole finds the time of
+// step k only once its values are there. Beware: ex_open(EX_WRITE) of this Exodus version always sets
+// NC_SHARE, so appending to an existing file (a restart, say) would show partial frames after a kill.
+// Not covered: a crash of the machine itself or a full disk. Nothing is fsync'ed (unless netCDF was built
+// with fsync), so after a power loss the kernel may have written the header before the data.
+void ExodusWriter::write_frame(double time, const State& state) {
+  PERIDOT_REQUIRE(exoid_ >= 0, "write_frame on a closed Exodus writer");
+  const std::size_t n = num_points_;
+  // Everything is checked before anything is written, so that a bad state never leaves half a frame behind.
+  PERIDOT_REQUIRE(state.u.size() == n && state.v.size() == n && state.force.size() == n,
+                  "state vector fields do not match the discretization");
+  for (const std::vector<double>* field : {&state.damage, &state.dilatation, &state.weighted_volume})
+    PERIDOT_REQUIRE(field->empty() || field->size() == n, "state scalar field does not match the discretization");
+  const int step = frames_ + 1;
+  const auto count = static_cast<int64_t>(n);
+  int var = 1;  // Exodus variable indices are 1-based, in variable_names_ order
+
+  for (const VectorField* field : {&state.u, &state.v, &state.force}) {
+    for (int d = 0; d < dimension_; ++d) {
+      for (std::size_t i = 0; i < n; ++i) buffer_[i] = (*field)(i, d);
+      check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, buffer_.data()), "ex_put_var");
+    }
+  }
+  for (const std::vector<double>* field : {&state.damage, &state.dilatation, &state.weighted_volume}) {
+    const double* values = field->data();
+    if (field->empty()) {
+      std::fill(buffer_.begin(), buffer_.end(), 0.0);
+      values = buffer_.data();
+    }
+    check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, values), "ex_put_var");
+  }
+  check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, volume_.data()), "ex_put_var");
+  PERIDOT_ASSERT(var == static_cast<int>(variable_names_.size()) + 1);
+
+  check(ex_put_time(exoid_, step, &time), "ex_put_time");
+  check(ex_update(exoid_), "ex_update");
+  frames_ = step;
+}
+
+}  // namespace peridot

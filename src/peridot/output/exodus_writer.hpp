@@ -1,0 +1,90 @@
+#pragma once
+// Exodus II output of a point cloud: one node per point, each point also a 1-node SPHERE element so that
+// ParaView / VisIt draw it, and nodal fields per time step.
+//
+// File layout (what a reader sees):
+//  - num_dim = disc.dimension (2 or 3); coordinates coordx, coordy[, coordz] = reference positions disc.x.
+//  - Node k+1 (Exodus numbering is 1-based) is point k. The node number map (node_num_map) holds
+//    disc.input_id[k] + 1, the order of generation before the space-filling-curve reorder, when input_id is set.
+//  - One element block per distinct value b of disc.block, in ascending b: block id b + 1, block name
+//    disc.block_names[b] (or "block_<b>" where no name is given), element type "SPHERE", 1 node per element,
+//    one attribute "radius" (see equivalent_radius()). Elements are grouped by block, and within a block in
+//    ascending point index; element_points() gives the point of every element in that order, and the element
+//    number map (elem_num_map) holds the node id of each element's point so that element ids = node ids.
+//  - Node sets: ids 1, 2, … in the order given, with their names, 0-based point indices stored as node k+1.
+//  - Nodal variables, in this order and with exactly these names (2D: no *_z):
+//      displacement_x, displacement_y, displacement_z, velocity_x, velocity_y, velocity_z,
+//      force_density_x, force_density_y, force_density_z, damage, dilatation, weighted_volume, volume
+//    force_density is State::force (internal force density). volume is constant, yet written every frame:
+//    an Exodus nodal variable has a value per time step, and a reader looking at frame k of a variable
+//    written only at frame 1 would see fill values. The cost is one double per point per frame.
+//  - Numbers are 8-byte doubles; the file is netCDF "64-bit offset" (Exodus large model), which keeps every
+//    nodal variable in its own netCDF variable vals_nod_var1, vals_nod_var2, …
+//
+// Crash safety: see write_frame(). The writer always creates a new file; appending to an existing one through
+// ex_open would lose the whole-frame guarantee (this Exodus opens existing files in netCDF share mode).
+// Side effect: the constructor sets ex_opts(EX_DEFAULT), process-wide, so that Exodus neither prints nor
+// aborts on an error; every failure here becomes an exception carrying Exodus' message instead.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+struct NodeSetOutput {
+  std::string name;
+  std::vector<std::uint32_t> points;  ///< 0-based point indices
+};
+
+class ExodusWriter {
+ public:
+  /// Creates (clobbers) the file and writes the mesh. thickness is used in 2D only, for the sphere radius.
+  /// Throws std::runtime_error naming the path and the Exodus/netCDF message on any failure of the library,
+  /// std::logic_error on inconsistent input (a node set naming a point that does not exist, …).
+  ExodusWriter(const std::string& path, const Discretization& disc, const std::vector<NodeSetOutput>& node_sets,
+               const std::string& title, double thickness = 1.0);
+  ExodusWriter(const ExodusWriter&) = delete;
+  ExodusWriter& operator=(const ExodusWriter&) = delete;
+  ExodusWriter(ExodusWriter&& other) noexcept;
+  ExodusWriter& operator=(ExodusWriter&& other) noexcept;
+  ~ExodusWriter();
+
+  /// Appends one time step with the fields of `state` (sizes must match the discretization; an empty
+  /// damage / dilatation / weighted_volume array is written as zeros), then flushes the file to the OS.
+  /// Crash safety: see the comment in the implementation; in short, after a kill a reader sees every frame
+  /// whose write_frame() returned, and possibly nothing of the frame being written.
+  void write_frame(double time, const State& state);
+
+  /// Closes the file; idempotent. Throws std::runtime_error if the final close fails.
+  void close();
+
+  int frames_written() const { return frames_; }
+  const std::string& path() const { return path_; }
+  /// Point index of every element, in Exodus element order (grouped by block; see the file comment).
+  const std::vector<std::uint32_t>& element_points() const { return element_points_; }
+  /// Nodal variable names as written (13 in 3D, 10 in 2D).
+  const std::vector<std::string>& variable_names() const { return variable_names_; }
+
+  /// Radius of the sphere drawn for a point of volume V: the sphere of volume V in 3D, (3V/4π)^(1/3); in 2D
+  /// the disc of area V/thickness, sqrt(V/(π·thickness)). Either way neighbouring spheres of a lattice of
+  /// spacing h just about touch (r ≈ 0.62h in 3D, 0.56h in 2D).
+  static double equivalent_radius(double volume, int dimension, double thickness);
+
+ private:
+  void check(int status, const char* what) const;  // throws on status < 0
+  void release() noexcept;                          // ex_close, ignoring errors (destructor, failed ctor)
+
+  int exoid_ = -1;
+  std::string path_;
+  int dimension_ = 3;
+  std::size_t num_points_ = 0;
+  int frames_ = 0;
+  std::vector<std::uint32_t> element_points_;
+  std::vector<std::string> variable_names_;
+  std::vector<double> volume_;  // copy of disc.volume: written every frame, the writer keeps no reference
+  std::vector<double> buffer_;  // one strided component at a time; reused for every frame
+};
+
+}  // namespace peridot

@@ -1,0 +1,74 @@
+#pragma once
+// Building blocks shared by every bond loop (forces, energy, damage): the geometry of a bond, the
+// neighbour volume it sees, and the per-block dispatch to compile-time dimension and model types.
+#include <algorithm>
+#include <cmath>
+
+#include "peridot/materials/dispatch.hpp"
+#include "peridot/neighbor/neighborhood.hpp"
+#include "peridot/solvers/internal_force.hpp"
+
+namespace peridot::bond_loop {
+
+/// Geometry of one bond i → j in the current configuration.
+template <int Dim>
+struct BondGeometry {
+  double xi;       ///< reference length |ξ| (m)
+  double e;        ///< extension |Y| − |ξ| (m)
+  double y[Dim];   ///< deformed bond Y
+  double length;   ///< |Y|
+};
+
+template <int Dim>
+inline BondGeometry<Dim> bond_geometry(const double* x, const double* u, std::size_t i, std::size_t j) {
+  BondGeometry<Dim> g;
+  double xi2 = 0, y2 = 0;
+  for (int d = 0; d < Dim; ++d) {
+    const double dx = x[3 * j + d] - x[3 * i + d];
+    const double dy = dx + (u[3 * j + d] - u[3 * i + d]);
+    xi2 += dx * dx;
+    y2 += dy * dy;
+    g.y[d] = dy;
+  }
+  g.xi = std::sqrt(xi2);
+  g.length = std::sqrt(y2);
+  g.e = g.length - g.xi;
+  return g;
+}
+
+/// Reference bond length only (for set-up loops).
+template <int Dim>
+inline double bond_length(const double* x, std::size_t i, std::size_t j) {
+  double xi2 = 0;
+  for (int d = 0; d < Dim; ++d) {
+    const double dx = x[3 * j + d] - x[3 * i + d];
+    xi2 += dx * dx;
+  }
+  return std::sqrt(xi2);
+}
+
+/// Neighbour volume seen by a bond, with the partial-volume factor when enabled. The pair horizon is
+/// the larger of the two blocks' (as in the neighbour search).
+inline double neighbor_volume(const ModelContext& ctx, std::size_t i, std::size_t j, double xi) {
+  const double v = ctx.disc->volume[j];
+  if (ctx.partial_volume_radius <= 0) return v;
+  const auto& blocks = ctx.disc->block;
+  const double horizon = std::max(ctx.params[blocks[i]].horizon, ctx.params[blocks[j]].horizon);
+  return v * partial_volume_factor(xi, horizon, ctx.partial_volume_radius);
+}
+
+/// Runs body(Dim, Model, params, range) for every block, with the dimension and the block's model as
+/// compile-time types.
+template <class Body>
+void for_each_block(const ModelContext& ctx, Body&& body) {
+  for (std::size_t b = 0; b < ctx.ranges.size(); ++b) {
+    const MaterialParams& p = ctx.params[b];
+    const BlockRange range = ctx.ranges[b];
+    if (range.begin == range.end) continue;
+    with_dimension(ctx.disc->dimension, [&](auto dim) {
+      with_model(p.model, [&](auto model) { body(dim, model, p, range); });
+    });
+  }
+}
+
+}  // namespace peridot::bond_loop

@@ -1,0 +1,47 @@
+#pragma once
+// The bond loops: weighted volume, dilatation, internal force, strain energy, stable time step.
+// All are gathers over the CSR bonds of each point, parallel over points with OpenMP and free of
+// atomics, so every result is bitwise independent of the thread count:
+//   f_i = Σ_j (T_i⟨ξ_ij⟩ − T_j⟨ξ_ji⟩) V_j = Σ_j (t_ij + t_ji) M_ij V_j,  M_ij = Y_ij/|Y_ij|.
+#include <cstdint>
+#include <vector>
+
+#include "peridot/geometry/discretize.hpp"
+#include "peridot/materials/material.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+/// What the bond loops need that does not change during a run.
+struct ModelContext {
+  const Discretization* disc = nullptr;
+  BondList* bonds = nullptr;
+  std::vector<MaterialParams> params;  ///< per block
+  std::vector<BlockRange> ranges;      ///< per block
+  double partial_volume_radius = 0;    ///< 0: no partial-volume correction
+  std::vector<std::uint8_t> no_fail;   ///< per point: bonds touching it never break (empty = none)
+
+  bool any_dilatation() const;
+  bool any_damage() const;
+};
+
+/// m_i = Σ_j ω ξ² V_j over all bonds (undamaged reference), for every point (m⁵; 2D m⁴·h).
+void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m);
+
+/// θ_i = (n/m_i) Σ_j ω ξ e V_j over intact bonds, for every point.
+void compute_dilatation(const ModelContext& ctx, const VectorField& u, const std::vector<double>& m,
+                        std::vector<double>& theta);
+
+/// Internal force density f (N/m³). θ must be current where a model uses it.
+void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                            const std::vector<double>& m, VectorField& f);
+
+/// Strain energy density W_i (J/m³) of every point; Σ W_i V_i is the total strain energy, and
+/// f_i V_i = −∂(Σ W V)/∂u_i.
+void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                                   const std::vector<double>& m, std::vector<double>& W);
+
+/// Silling–Askari stable time step min_i √(2ρ_i / Σ_j V_j c/ξ_ij) (s), before any safety factor.
+double stable_time_step(const ModelContext& ctx);
+
+}  // namespace peridot

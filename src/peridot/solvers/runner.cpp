@@ -1,0 +1,221 @@
+#include "peridot/solvers/runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "peridot/deck/deck.hpp"
+#include "peridot/output/csv_writer.hpp"
+#include "peridot/output/exodus_writer.hpp"
+
+namespace peridot {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string>& point_field_names() {
+  static const std::vector<std::string> names = {
+      "displacement_x", "displacement_y", "displacement_z", "velocity_x", "velocity_y", "velocity_z",
+      "force_density_x", "force_density_y", "force_density_z", "damage", "dilatation", "weighted_volume"};
+  return names;
+}
+
+double point_field(const State& state, const std::string& field, std::size_t i) {
+  const int component = field.back() - 'x';  // for the vector fields, whose names end in _x, _y or _z
+  if (field.rfind("displacement_", 0) == 0) return state.u(i, component);
+  if (field.rfind("velocity_", 0) == 0) return state.v(i, component);
+  if (field.rfind("force_density_", 0) == 0) return state.force(i, component);
+  if (field == "damage") return state.damage[i];
+  if (field == "dilatation") return state.dilatation[i];
+  if (field == "weighted_volume") return state.weighted_volume[i];
+  throw std::out_of_range("unknown point field '" + field + "'");
+}
+
+std::string describe_setup(const Simulation& sim) {
+  const Discretization& disc = sim.discretization();
+  const Problem& problem = sim.problem();
+  std::ostringstream out;
+  const double bonds = static_cast<double>(sim.bonds().num_bonds());
+  out << fmt::format("dimension        {}{}\n", disc.dimension,
+                     disc.dimension == 2 ? (problem.plane == PlaneKind::stress ? " (plane stress)" : " (plane strain)") : "");
+  out << fmt::format("points           {}\n", disc.num_points());
+  for (std::size_t b = 0; b < disc.block_names.size(); ++b) {
+    const BlockRange r = sim.model().ranges[b];
+    const MaterialParams& p = sim.model().params[b];
+    out << fmt::format("  block {:<10} {} points, model {}, horizon {:.6g} m, critical stretch {}\n", disc.block_names[b],
+                       r.end - r.begin, p.model == ModelKind::pmb ? "pmb" : "lps", p.horizon,
+                       std::isfinite(p.critical_stretch) ? fmt::format("{:.6g}", p.critical_stretch) : "none");
+  }
+  out << fmt::format("bonds            {} directed ({:.1f} per point)\n", sim.bonds().num_bonds(),
+                     disc.num_points() ? bonds / static_cast<double>(disc.num_points()) : 0.0);
+  for (const NodeSet& set : sim.node_sets()) out << fmt::format("  node set {:<10} {} points\n", set.name, set.points.size());
+  out << fmt::format("memory           {:.1f} MiB (points and bonds)\n", static_cast<double>(sim.memory_bytes()) / (1 << 20));
+  out << fmt::format("stable time step {:.6g} s (Silling–Askari)\n", sim.stable_time_step());
+  out << fmt::format("time step        {:.6g} s{}\n", sim.time_step(),
+                     sim.time_step() > sim.stable_time_step() ? "  WARNING: above the stable time step" : "");
+  out << fmt::format("steps            {} (end time {:.6g} s)\n", sim.total_steps(),
+                     sim.time_step() * static_cast<double>(sim.total_steps()));
+  return out.str();
+}
+
+namespace {
+
+/// Writes text to path through a temporary file and a rename, so the file is either absent or whole.
+void write_file_atomically(const fs::path& path, const std::string& text) {
+  fs::path tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+/// Log lines go to the run log (flushed at once) and to the optional stream.
+class RunLog {
+ public:
+  RunLog(const fs::path& path, std::ostream* echo) : file_(path), echo_(echo) {}
+  void line(const std::string& text) {
+    file_ << text << '\n' << std::flush;
+    if (echo_) *echo_ << text << '\n' << std::flush;
+  }
+
+ private:
+  std::ofstream file_;
+  std::ostream* echo_;
+};
+
+class History {
+ public:
+  History(const fs::path& path, Simulation& sim) : sim_(sim) {
+    const Problem& problem = sim.problem();
+    std::vector<std::string> columns = {"time", "step", "kinetic_energy", "strain_energy", "external_work",
+                                        "momentum_x", "momentum_y", "momentum_z", "max_damage"};
+    for (const std::string& name : problem.output.reaction_sets) {
+      for (const NodeSet& set : sim.node_sets())
+        if (set.name == name) reaction_sets_.push_back(&set);
+      for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("reaction_" + name + axis);
+    }
+    for (const ProbeSpec& probe : problem.output.probes) {
+      probes_.push_back({nearest_point(sim.discretization(), probe.point), probe.field});
+      columns.push_back(probe.name);
+    }
+    writer_ = std::make_unique<CsvWriter>(path.string(), columns);
+  }
+  void write() {
+    const Totals t = sim_.totals();
+    const State& s = sim_.state();
+    std::vector<double> row = {s.time, static_cast<double>(s.step), t.kinetic_energy, t.strain_energy,
+                               sim_.external_work(), t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage};
+    for (const NodeSet* set : reaction_sets_) {
+      Vec3 r = sim_.reaction(*set);
+      row.insert(row.end(), {r.x, r.y, r.z});
+    }
+    for (const auto& [point, field] : probes_) row.push_back(point_field(s, field, point));
+    writer_->write_row(row);
+  }
+
+ private:
+  static std::size_t nearest_point(const Discretization& disc, Vec3 p) {
+    std::size_t best = 0;
+    double best_distance = INFINITY;
+    for (std::size_t i = 0; i < disc.num_points(); ++i) {
+      Vec3 d = disc.x.get(i) - p;
+      if (disc.dimension == 2) d.z = 0;
+      if (dot(d, d) < best_distance) best_distance = dot(d, d), best = i;
+    }
+    return best;
+  }
+  Simulation& sim_;
+  std::vector<const NodeSet*> reaction_sets_;
+  std::vector<std::pair<std::size_t, std::string>> probes_;
+  std::unique_ptr<CsvWriter> writer_;
+};
+
+class Progress {
+ public:
+  explicit Progress(bool enabled) : enabled_(enabled), start_(Clock::now()), last_(start_) {}
+  void update(const Simulation& sim, bool force = false) {
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    if (!force && now - last_ < std::chrono::seconds(1)) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const auto step = sim.state().step, total = sim.total_steps();
+    const double rate = elapsed > 0 ? static_cast<double>(step) / elapsed : 0;
+    const double eta = rate > 0 ? static_cast<double>(total - step) / rate : 0;
+    std::cerr << fmt::format("\rstep {}/{}  t = {:.4e} s  {:5.1f}%  {:.0f} steps/s  ETA {:.1f} s   ", step, total,
+                             sim.state().time, total ? 100.0 * static_cast<double>(step) / static_cast<double>(total) : 100.0,
+                             rate, eta)
+              << (force ? "\n" : "") << std::flush;
+  }
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool enabled_;
+  Clock::time_point start_, last_;
+};
+
+}  // namespace
+
+void run_problem(const Problem& problem, const RunOptions& options) {
+  Simulation sim(problem);  // every input error surfaces here, before anything is written
+
+  const OutputSpec& output = problem.output;
+  const fs::path dir = output.directory;
+  fs::create_directories(dir);
+  write_file_atomically(dir / "resolved_deck.yaml", resolved_deck_yaml(problem));
+  RunLog log(dir / "run.log", options.log);
+  log.line("peridot run " + problem.deck_path);
+  for (const Diagnostic& w : problem.warnings) log.line(w.str());
+  std::istringstream setup(describe_setup(sim));
+  for (std::string line; std::getline(setup, line);) log.line(line);
+  if (sim.time_step() > sim.stable_time_step())
+    log.line(fmt::format("warning: time step {:.6g} s is above the stable time step {:.6g} s", sim.time_step(),
+                         sim.stable_time_step()));
+
+  std::unique_ptr<ExodusWriter> exodus;
+  if (output.exodus_every > 0) {
+    std::vector<NodeSetOutput> sets;
+    for (const NodeSet& set : sim.node_sets()) sets.push_back({set.name, set.points});
+    exodus = std::make_unique<ExodusWriter>((dir / output.exodus_file).string(), sim.discretization(), sets,
+                                            "peridot: " + problem.deck_path, problem.thickness);
+  }
+  std::unique_ptr<History> history;
+  if (output.history_every > 0) history = std::make_unique<History>(dir / output.history_file, sim);
+
+  auto write_outputs = [&](bool last) {
+    const std::int64_t step = sim.state().step;
+    if (exodus && (step % output.exodus_every == 0 || last)) {
+      sim.update_output_fields();
+      exodus->write_frame(sim.state().time, sim.state());
+    }
+    if (history && (step % output.history_every == 0 || last)) history->write();
+  };
+
+  Progress progress(options.progress && output.progress);
+  try {
+    sim.initialize();
+    write_outputs(sim.total_steps() == 0);
+    while (sim.state().step < sim.total_steps()) {
+      sim.step();
+      write_outputs(sim.state().step == sim.total_steps());
+      progress.update(sim);
+    }
+  } catch (const NumericalError& e) {
+    log.line(std::string("error: ") + e.what());
+    throw;  // writers close as they go out of scope; every frame written so far stays readable
+  }
+  progress.update(sim, true);
+  log.line(fmt::format("done: {} steps to t = {:.6g} s in {:.2f} s", sim.state().step, sim.state().time,
+                       progress.elapsed()));
+}
+
+}  // namespace peridot

@@ -1,0 +1,31 @@
+#pragma once
+// Runs a validated problem to its end: writes the resolved deck and a run log, Exodus frames and CSV
+// history, and prints a progress line. Output starts only once the whole problem has been set up, so a
+// deck problem found at set-up (an empty node set) leaves nothing behind.
+#include <iosfwd>
+#include <string>
+
+#include "peridot/deck/problem.hpp"
+#include "peridot/solvers/simulation.hpp"
+
+namespace peridot {
+
+struct RunOptions {
+  bool progress = true;        ///< progress line on stderr (also off when output.progress is false)
+  std::ostream* log = nullptr; ///< extra copy of the log (stdout by the CLI)
+};
+
+/// Runs the problem. Throws InputError (before writing anything) or NumericalError (after closing every
+/// output written so far).
+void run_problem(const Problem& problem, const RunOptions& options);
+
+/// The summary `peridot check` prints: points, bonds, memory, time steps.
+std::string describe_setup(const Simulation& simulation);
+
+/// Value of a named point field ("displacement_x", "damage", …) at point i; throws std::out_of_range for
+/// an unknown name.
+double point_field(const State& state, const std::string& field, std::size_t i);
+/// The field names point_field accepts.
+const std::vector<std::string>& point_field_names();
+
+}  // namespace peridot

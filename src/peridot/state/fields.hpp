@@ -1,0 +1,70 @@
+#pragma once
+// Point and bond storage: structure of arrays, one contiguous array per field. Vector fields keep their
+// three components together (x0 y0 z0 x1 y1 z1 …) behind the accessor v(i, d): a bond loop reads all
+// three components of a neighbour from one cache line. 2D problems store z = 0.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "peridot/core/vec3.hpp"
+
+namespace peridot {
+
+class VectorField {
+ public:
+  VectorField() = default;
+  explicit VectorField(std::size_t n) : data_(3 * n, 0.0) {}
+  void resize(std::size_t n) { data_.assign(3 * n, 0.0); }
+  std::size_t size() const { return data_.size() / 3; }
+  double& operator()(std::size_t i, int d) { return data_[3 * i + d]; }
+  double operator()(std::size_t i, int d) const { return data_[3 * i + d]; }
+  Vec3 get(std::size_t i) const { return {data_[3 * i], data_[3 * i + 1], data_[3 * i + 2]}; }
+  void set(std::size_t i, Vec3 v) {
+    data_[3 * i] = v.x;
+    data_[3 * i + 1] = v.y;
+    data_[3 * i + 2] = v.z;
+  }
+  double* data() { return data_.data(); }
+  const double* data() const { return data_.data(); }
+
+ private:
+  std::vector<double> data_;
+};
+
+/// Where the points are and what they belong to; fixed after set-up.
+struct Discretization {
+  int dimension = 3;
+  std::size_t num_points() const { return volume.size(); }
+  VectorField x;                 ///< reference position (m)
+  std::vector<double> volume;    ///< V (m³; in 2D, area × thickness)
+  std::vector<std::int32_t> block;     ///< body (block) index
+  std::vector<std::uint32_t> input_id; ///< order of generation, before the space-filling-curve reorder
+  std::vector<std::string> block_names;
+};
+
+/// Bonds in compressed sparse rows: the bonds of point i are offsets[i] … offsets[i+1]−1. Every per-bond
+/// quantity is a parallel array indexed by the same bond index. The family is symmetric: j is a neighbour
+/// of i exactly when i is a neighbour of j.
+struct BondList {
+  std::vector<std::uint64_t> offsets;     ///< size N + 1
+  std::vector<std::uint32_t> neighbors;   ///< size nnz
+  std::vector<std::uint8_t> broken;       ///< 1 once the bond has failed (irreversible)
+  std::size_t num_bonds() const { return neighbors.size(); }
+};
+
+/// What changes during a run.
+struct State {
+  double time = 0;
+  std::int64_t step = 0;
+  VectorField u;          ///< displacement (m)
+  VectorField v;          ///< velocity (m/s)
+  VectorField force;      ///< internal force density (N/m³)
+  VectorField body_force; ///< applied body force density (N/m³)
+  std::vector<double> damage;           ///< φ, volume-weighted fraction of broken bonds (-)
+  std::vector<double> dilatation;       ///< θ (-) (LPS; 2D: in-plane θ₂)
+  std::vector<double> weighted_volume;  ///< m (m⁵; 2D m⁴·h) (LPS)
+  void resize(std::size_t n);
+};
+
+}  // namespace peridot

@@ -1,0 +1,75 @@
+#pragma once
+// Small problems built in code for the unit and verification tests (no deck file involved).
+#include <cmath>
+#include <string>
+
+#include "peridot/deck/problem.hpp"
+
+namespace peridot::testing {
+
+struct BlockSetup {
+  int dimension = 3;
+  PlaneKind plane = PlaneKind::none;
+  ModelKind model = ModelKind::lps;
+  InfluenceKind influence = InfluenceKind::constant;
+  int cells[3] = {10, 10, 10};  ///< lattice points along x, y, z (z ignored in 2D)
+  double spacing = 1e-3;        ///< m
+  double horizon_factor = 3.015;
+  double bulk_modulus = 160e9, shear_modulus = 79.3e9;  ///< LPS; PMB uses K and its implied ν
+  double density = 7800;
+  double jitter = 0;
+  bool partial_volume = false;
+};
+
+/// A box of lattice points [0, n·Δx] with one material, no loads, a handful of steps.
+inline Problem box_problem(const BlockSetup& s) {
+  Problem p;
+  p.deck_path = "<test>";
+  p.dimension = s.dimension;
+  p.plane = s.dimension == 2 ? (s.plane == PlaneKind::none ? PlaneKind::stress : s.plane) : PlaneKind::none;
+  p.thickness = s.dimension == 2 ? s.spacing : 1;
+  p.spacing = s.spacing;
+  p.jitter = s.jitter;
+  p.partial_volume = s.partial_volume;
+
+  MaterialSpec m;
+  m.name = "solid";
+  m.model = s.model;
+  m.density = s.density;
+  m.influence = s.influence;
+  double K = s.bulk_modulus, G = s.shear_modulus;
+  if (s.model == ModelKind::pmb) {
+    // Bond-based: ν = 1/4 (3D, plane strain) or 1/3 (plane stress); G follows from K and ν.
+    const double nu = p.plane == PlaneKind::stress ? 1.0 / 3.0 : 0.25;
+    G = 3 * K * (1 - 2 * nu) / (2 * (1 + nu));
+  }
+  m.elastic = {K, G, 9 * K * G / (3 * K + G), (3 * K - 2 * G) / (2 * (3 * K + G))};
+  p.materials.push_back(m);
+
+  BodySpec b;
+  b.name = "block";
+  b.material = "solid";
+  Shape box;
+  box.kind = Shape::Kind::box;
+  box.lo = {0, 0, 0};
+  box.hi = {s.cells[0] * s.spacing, s.cells[1] * s.spacing, s.dimension == 3 ? s.cells[2] * s.spacing : 0.0};
+  b.shape = box;
+  b.horizon = s.horizon_factor * s.spacing;
+  p.bodies.push_back(b);
+
+  p.solver.num_steps = 10;
+  p.output.exodus_every = 0;
+  p.output.history_every = 0;
+  p.output.progress = false;
+  return p;
+}
+
+inline Shape box_shape(Vec3 lo, Vec3 hi) {
+  Shape s;
+  s.kind = Shape::Kind::box;
+  s.lo = lo;
+  s.hi = hi;
+  return s;
+}
+
+}  // namespace peridot::testing

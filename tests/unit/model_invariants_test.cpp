@@ -1,0 +1,148 @@
+// Analytic invariants every model must satisfy (STYLE.md): zero force under rigid motion, Σ f V = 0 and
+// zero net moment, and f = −∂W/∂u by finite differences of the total strain energy. Run for PMB and
+// LPS, in 3D and in 2D (plane stress and plane strain), for the three influence functions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <tuple>
+
+#include "peridot/geometry/discretize.hpp"
+#include "peridot/solvers/simulation.hpp"
+#include "support/problems.hpp"
+
+namespace peridot {
+namespace {
+
+using testing::BlockSetup;
+
+struct Case {
+  const char* name;
+  int dimension;
+  PlaneKind plane;
+  ModelKind model;
+  InfluenceKind influence;
+};
+
+BlockSetup setup_for(const Case& c) {
+  BlockSetup s;
+  s.dimension = c.dimension;
+  s.plane = c.plane;
+  s.model = c.model;
+  s.influence = c.influence;
+  if (c.dimension == 3) s.cells[0] = s.cells[1] = s.cells[2] = 7;
+  else s.cells[0] = s.cells[1] = 12;
+  s.jitter = 0.1;  // irregular points: no symmetry helps the sums cancel
+  return s;
+}
+
+struct Forces {
+  std::vector<double> theta, force_times_volume;
+  double energy = 0;
+};
+
+// Internal force (times volume) and total strain energy for displacement u.
+Forces evaluate(Simulation& sim, const VectorField& u) {
+  const ModelContext& ctx = sim.model();
+  State& s = sim.state();
+  compute_dilatation(ctx, u, s.weighted_volume, s.dilatation);
+  compute_internal_force(ctx, u, s.dilatation, s.weighted_volume, s.force);
+  std::vector<double> W;
+  compute_strain_energy_density(ctx, u, s.dilatation, s.weighted_volume, W);
+  Forces out;
+  const auto& V = sim.discretization().volume;
+  for (std::size_t i = 0; i < W.size(); ++i) out.energy += W[i] * V[i];
+  for (std::size_t i = 0; i < W.size(); ++i)
+    for (int d = 0; d < 3; ++d) out.force_times_volume.push_back(s.force(i, d) * V[i]);
+  return out;
+}
+
+VectorField random_displacement(const Discretization& disc, double amplitude, std::uint64_t seed) {
+  VectorField u(disc.num_points());
+  for (std::size_t i = 0; i < disc.num_points(); ++i)
+    for (int d = 0; d < disc.dimension; ++d) u(i, d) = amplitude * (2 * uniform01(seed) - 1);
+  return u;
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+class ModelInvariants : public ::testing::TestWithParam<Case> {};
+
+TEST_P(ModelInvariants, RigidMotionGivesZeroForce) {
+  Simulation sim(testing::box_problem(setup_for(GetParam())));
+  const Discretization& disc = sim.discretization();
+  const int dim = disc.dimension;
+  // Scale: the force a 1e-3 strain-sized random field produces.
+  const double scale = max_abs(evaluate(sim, random_displacement(disc, 1e-3 * 1e-3, 7)).force_times_volume);
+
+  VectorField translation(disc.num_points()), rotation(disc.num_points());
+  const double angle = 0.3;  // a large rotation: the models are geometrically nonlinear
+  for (std::size_t i = 0; i < disc.num_points(); ++i) {
+    const Vec3 x = disc.x.get(i);
+    for (int d = 0; d < dim; ++d) translation(i, d) = 2e-3 * (d + 1);
+    // Rotation about z (and, in 3D, then about x): u = R x − x.
+    Vec3 r{std::cos(angle) * x.x - std::sin(angle) * x.y, std::sin(angle) * x.x + std::cos(angle) * x.y, x.z};
+    if (dim == 3) r = {r.x, std::cos(angle) * r.y - std::sin(angle) * r.z, std::sin(angle) * r.y + std::cos(angle) * r.z};
+    rotation.set(i, r - x);
+  }
+  EXPECT_LT(max_abs(evaluate(sim, translation).force_times_volume), 1e-9 * scale);
+  EXPECT_LT(max_abs(evaluate(sim, rotation).force_times_volume), 1e-6 * scale);
+}
+
+TEST_P(ModelInvariants, LinearAndAngularMomentumAreConserved) {
+  Simulation sim(testing::box_problem(setup_for(GetParam())));
+  const Discretization& disc = sim.discretization();
+  const VectorField u = random_displacement(disc, 0.05 * 1e-3, 11);
+  const Forces f = evaluate(sim, u);
+  Vec3 net, moment;
+  double magnitude = 0, moment_scale = 0;
+  for (std::size_t i = 0; i < disc.num_points(); ++i) {
+    const Vec3 fi{f.force_times_volume[3 * i], f.force_times_volume[3 * i + 1], f.force_times_volume[3 * i + 2]};
+    const Vec3 y = disc.x.get(i) + u.get(i);  // moment about the origin, deformed configuration
+    net = net + fi;
+    moment = moment + cross(y, fi);
+    magnitude += norm(fi);
+    moment_scale += norm(y) * norm(fi);
+  }
+  EXPECT_LT(norm(net), 1e-12 * magnitude);
+  EXPECT_LT(norm(moment), 1e-12 * moment_scale);
+}
+
+TEST_P(ModelInvariants, ForceIsMinusEnergyGradient) {
+  Simulation sim(testing::box_problem(setup_for(GetParam())));
+  const Discretization& disc = sim.discretization();
+  const VectorField u = random_displacement(disc, 2e-3 * 1e-3, 13);
+  const Forces f = evaluate(sim, u);
+  const double h = 1e-6 * 1e-3;  // central difference step (m)
+  const double scale = max_abs(f.force_times_volume);
+  // Interior, edge and corner points: every sort of family.
+  for (std::size_t i : {std::size_t{0}, disc.num_points() / 2, disc.num_points() / 3, disc.num_points() - 1}) {
+    for (int d = 0; d < disc.dimension; ++d) {
+      VectorField plus = u, minus = u;
+      plus(i, d) += h;
+      minus(i, d) -= h;
+      const double gradient = (evaluate(sim, plus).energy - evaluate(sim, minus).energy) / (2 * h);
+      EXPECT_NEAR(f.force_times_volume[3 * i + d], -gradient, 1e-6 * scale) << "point " << i << " component " << d;
+    }
+  }
+}
+
+const Case cases[] = {
+    {"Pmb3d", 3, PlaneKind::none, ModelKind::pmb, InfluenceKind::constant},
+    {"Pmb3dInverseDistance", 3, PlaneKind::none, ModelKind::pmb, InfluenceKind::inverse_distance},
+    {"Pmb2dPlaneStress", 2, PlaneKind::stress, ModelKind::pmb, InfluenceKind::constant},
+    {"Pmb2dPlaneStrainGaussian", 2, PlaneKind::strain, ModelKind::pmb, InfluenceKind::gaussian},
+    {"Lps3d", 3, PlaneKind::none, ModelKind::lps, InfluenceKind::constant},
+    {"Lps3dGaussian", 3, PlaneKind::none, ModelKind::lps, InfluenceKind::gaussian},
+    {"Lps2dPlaneStress", 2, PlaneKind::stress, ModelKind::lps, InfluenceKind::constant},
+    {"Lps2dPlaneStrainInverseDistance", 2, PlaneKind::strain, ModelKind::lps, InfluenceKind::inverse_distance},
+};
+
+INSTANTIATE_TEST_SUITE_P(AllModels, ModelInvariants, ::testing::ValuesIn(cases),
+                         [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace peridot
