@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 
 #include "peridot/deck/deck.hpp"
@@ -31,11 +32,13 @@ int main(int argc, char** argv) {
   std::string deck;
   int threads = 0;
   bool quiet = false, markdown = false;
+  std::string output_dir;
 
   CLI::App* run = app.add_subcommand("run", "run a deck");
   run->add_option("deck", deck, "the YAML deck")->required();
   run->add_option("-t,--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)");
   run->add_flag("-q,--quiet", quiet, "no progress line and no log on standard output");
+  run->add_option("-o,--output-dir", output_dir, "write the outputs here instead of the deck's output.directory");
 
   CLI::App* check = app.add_subcommand("check", "validate a deck and describe the run without running it");
   check->add_option("deck", deck, "the YAML deck")->required();
@@ -53,6 +56,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     peridot::Problem problem = peridot::load_deck(deck);
+    if (!output_dir.empty()) problem.output.directory = std::filesystem::absolute(output_dir).string();
     for (const peridot::Diagnostic& w : problem.warnings) std::cerr << w.str() << '\n';
     if (check->parsed()) {
       peridot::Simulation simulation(problem);

@@ -58,23 +58,23 @@ void run(Simulation& sim, Observe&& observe) {
   }
 }
 
-// A plane-stress LPS bar hit at its left end by a velocity ramped over t_r: the half-amplitude point of
-// the front passes two probes Δx apart Δx/c apart in time, c = √(E/ρ).
+// A plane-stress PMB bar (ν = 1/3, so K = E) hit at its left end by a velocity ramped over t_r: the
+// half-amplitude point of the front passes two probes Δx apart Δx/c apart in time, c = √(E/ρ). The ramp
+// (20 µs, 100 mm of front) is long against the width (16 mm), so the bar is slender for this wave.
+// LPS is not used here: its 2D bars measure 5.5 % fast at this width (2.8 % at 40 points across), a
+// surface effect that shrinks as δ/width; see the issue notes.
 TEST(BarWave, TravelsAtBarSpeed) {
   BlockSetup s;
   s.dimension = 2;
   s.plane = PlaneKind::stress;
-  s.model = ModelKind::lps;
-  const double E = 200e9, nu = 0.3, rho = 7800;
-  s.bulk_modulus = E / (3 * (1 - 2 * nu));
-  s.shear_modulus = E / (2 * (1 + nu));
+  s.model = ModelKind::pmb;
+  const double E = 200e9, rho = 7800;
+  s.bulk_modulus = E;
   s.density = rho;
   s.cells[0] = 400;
-  s.cells[1] = getenv("W") ? atoi(getenv("W")) : 8;
-  s.partial_volume = getenv("PV") != nullptr;
-  if (getenv("PMB")) s.model = ModelKind::pmb;
+  s.cells[1] = 16;
   Problem p = testing::box_problem(s);
-  const double v0 = 1.0, ramp = getenv("R") ? atof(getenv("R")) : 20e-6, c = std::sqrt(E / rho);
+  const double v0 = 1.0, ramp = 20e-6, c = std::sqrt(E / rho);
   p.node_sets = {{"end", {}, testing::box_shape({-1, -1, -1}, {2 * s.spacing, 1, 1}), {}, ""}};
   p.boundary_conditions = {{{}, BoundaryConditionSpec::Kind::velocity, "end", 0,
                             Expression{std::to_string(v0) + " * min(t / " + std::to_string(ramp) + ", 1)", {}, true}}};
