@@ -1,0 +1,82 @@
+// Material calibration against the closed forms of shared/reference/README.md: micromodulus, critical
+// stretch from fracture energy (3D and 2D), the 2D bulk modulus, and the influence-function moments.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "peridot/materials/material.hpp"
+#include "support/problems.hpp"
+
+namespace peridot {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+MaterialParams resolve(int dimension, PlaneKind plane, ModelKind model, double fracture_energy,
+                       InfluenceKind influence = InfluenceKind::constant) {
+  testing::BlockSetup s;
+  s.dimension = dimension;
+  s.plane = plane;
+  s.model = model;
+  s.influence = influence;
+  Problem p = testing::box_problem(s);
+  p.materials[0].damage.enabled = true;
+  p.materials[0].damage.fracture_energy = fracture_energy;
+  return resolve_material(p.materials[0], 3e-3, p);
+}
+
+TEST(MaterialConstants, PmbMicromodulusAndCriticalStretch3D) {
+  const MaterialParams p = resolve(3, PlaneKind::none, ModelKind::pmb, 42408);
+  const double K = p.elastic.bulk_modulus, delta = 3e-3;
+  EXPECT_NEAR(p.micromodulus, 18 * K / (pi * std::pow(delta, 4)), 1e-12 * p.micromodulus);
+  EXPECT_NEAR(p.critical_stretch, std::sqrt(5 * 42408 / (9 * K * delta)), 1e-12);
+  EXPECT_DOUBLE_EQ(p.stable_micromodulus, p.micromodulus);
+}
+
+TEST(MaterialConstants, PmbMicromodulusAndCriticalStretch2D) {
+  for (PlaneKind plane : {PlaneKind::stress, PlaneKind::strain}) {
+    const MaterialParams p = resolve(2, plane, ModelKind::pmb, 3.8);
+    const double E = p.elastic.youngs_modulus, nu = p.elastic.poisson_ratio, delta = 3e-3, h = 1e-3;
+    const double K2 = plane == PlaneKind::stress ? E / (2 * (1 - nu)) : E / (2 * (1 - nu - 2 * nu * nu));
+    EXPECT_NEAR(p.micromodulus, 12 * K2 / (pi * h * std::pow(delta, 3)), 1e-12 * p.micromodulus);
+    EXPECT_NEAR(p.critical_stretch, std::sqrt(pi * 3.8 / (3 * K2 * delta)), 1e-12);
+  }
+}
+
+TEST(MaterialConstants, LpsCoefficients) {
+  const MaterialParams p3 = resolve(3, PlaneKind::none, ModelKind::lps, 100);
+  EXPECT_DOUBLE_EQ(p3.alpha_volumetric, 3 * p3.elastic.bulk_modulus);
+  EXPECT_DOUBLE_EQ(p3.alpha_deviatoric, 15 * p3.elastic.shear_modulus);
+  const MaterialParams p2 = resolve(2, PlaneKind::stress, ModelKind::lps, 100);
+  const double E = p2.elastic.youngs_modulus, nu = p2.elastic.poisson_ratio;
+  EXPECT_NEAR(p2.alpha_volumetric, 2 * E / (2 * (1 - nu)), 1e-6 * p2.alpha_volumetric);
+  EXPECT_DOUBLE_EQ(p2.alpha_deviatoric, 8 * p2.elastic.shear_modulus);
+  EXPECT_EQ(p2.dilatation_factor, 2);
+}
+
+TEST(MaterialConstants, InfluenceMomentsMatchQuadrature) {
+  const double delta = 2.0;
+  for (InfluenceKind kind : {InfluenceKind::constant, InfluenceKind::inverse_distance, InfluenceKind::gaussian})
+    for (int p = 2; p <= 4; ++p) {
+      const int n = 200000;
+      double sum = 0;
+      for (int k = 0; k < n; ++k) {
+        const double xi = (k + 0.5) * delta / n;
+        sum += influence(kind, xi, delta) * std::pow(xi, p) * delta / n;
+      }
+      EXPECT_NEAR(influence_moment(kind, delta, p), sum, 1e-8 * sum) << static_cast<int>(kind) << " p=" << p;
+    }
+}
+
+// With ω = δ/ξ the critical stretch still satisfies G0 = (π c0 s0²/2) ∫ ω ξ⁴ dξ (3D), c0 from K.
+TEST(MaterialConstants, CriticalStretchWithInfluenceFunction) {
+  const MaterialParams p = resolve(3, PlaneKind::none, ModelKind::pmb, 1000, InfluenceKind::inverse_distance);
+  const double delta = 3e-3, K = p.elastic.bulk_modulus;
+  EXPECT_NEAR(p.micromodulus, 27 * K / (2 * pi * std::pow(delta, 4)), 1e-12 * p.micromodulus);
+  const double g0 = pi * p.micromodulus * p.critical_stretch * p.critical_stretch / 2 * std::pow(delta, 5) / 4;
+  EXPECT_NEAR(g0, 1000, 1e-9);
+}
+
+}  // namespace
+}  // namespace peridot
