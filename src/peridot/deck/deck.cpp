@@ -450,6 +450,7 @@ struct Parser {
     if (r.given("num_steps")) p.solver.num_steps = r["num_steps"].integer;
     p.solver.time_step = r.optional_number("time_step");
     p.solver.safety_factor = r["safety_factor"].number;
+    p.solver.damping = r["damping"].number;
   }
 
   void parse_output(const Value& v) {

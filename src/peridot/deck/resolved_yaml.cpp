@@ -214,6 +214,7 @@ void emit_solver_and_output(YAML::Emitter& out, const Problem& p) {
   if (p.solver.num_steps) out << YAML::Key << "num_steps" << YAML::Value << *p.solver.num_steps;
   if (p.solver.time_step) out << YAML::Key << "time_step" << YAML::Value << number(*p.solver.time_step);
   out << YAML::Key << "safety_factor" << YAML::Value << number(p.solver.safety_factor);
+  out << YAML::Key << "damping" << YAML::Value << number(p.solver.damping);
   out << YAML::EndMap;
 
   const OutputSpec& o = p.output;

@@ -55,6 +55,7 @@ const std::vector<UnitInfo>& unit_table() {
       {Unit::energy_per_area, "energy per area", {{"J/m^2", 1.0}, {"N/m", 1.0}, {"kJ/m^2", 1e3}}},
       {Unit::velocity, "velocity", {{"m/s", 1.0}, {"mm/s", 1e-3}, {"km/s", 1e3}}},
       {Unit::force_density, "force density", {{"N/m^3", 1.0}, {"kN/m^3", 1e3}, {"MN/m^3", 1e6}}},
+      {Unit::rate, "rate", {{"1/s", 1.0}, {"1/ms", 1e3}, {"1/us", 1e6}}},
   };
   return table;
 }
@@ -275,7 +276,10 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "time_step", .unit = Unit::time, .range = positive,
                  .description = "fixed Δt (s); default safety_factor × stable Δt"},
                 {.key = "safety_factor", .default_yaml = "0.8", .range = {0, 1, true, false},
-                 .description = "fraction of the stable time step"}}});
+                 .description = "fraction of the stable time step"},
+                {.key = "damping", .unit = Unit::rate, .default_yaml = "0", .range = {0, infinity, false, true},
+                 .description = "mass-proportional viscous damping c (1/s): free velocities decay as e^(−ct); "
+                                "for relaxing to static equilibrium (the energy it removes is not in the history)"}}});
   s.push_back({"output", "what is written, relative to the deck's folder",
                {{.key = "directory", .type = VT::text, .default_yaml = "output", .description = "output folder, relative to the deck"},
                 {.key = "exodus", .type = VT::mapping, .description = "Exodus II fields (see output.exodus); omit for none"},

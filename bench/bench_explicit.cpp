@@ -1,0 +1,154 @@
+// Explicit-dynamics benchmark: a simple-cubic block of points (horizon 3.015 spacings, 122 bonds per
+// interior point), PMB or LPS, a smooth initial velocity field, N velocity-Verlet steps. Prints one JSON
+// line: points, directed bonds, neighbour-build and step times, bond updates per second per core, bytes
+// per bond (with the breakdown) and peak resident memory. bench/compare_lammps.py runs LAMMPS on the
+// identical problem (bench/lammps/run_lammps.py) and prints the ratios.
+//
+//   bench_explicit --model lps --n 58 58 60 --steps 200 [--threads 1] [--critical-stretch 1e-4]
+//                  [--dump final.txt]
+#include <omp.h>
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "peridot/solvers/simulation.hpp"
+
+namespace {
+
+using namespace peridot;
+
+struct Options {
+  std::string model = "pmb";
+  int n[3] = {58, 58, 60};
+  double spacing = 1e-3;
+  int steps = 200;
+  double dt = 0;  // 0: 0.8 × stable
+  double v0 = 1e-3;
+  double critical_stretch = 0;  // 0: no damage
+  int threads = 1;
+  std::string dump;
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int k = 1; k < argc; ++k) {
+    const std::string a = argv[k];
+    auto next = [&] { return std::string(argv[++k]); };
+    if (a == "--model") o.model = next();
+    else if (a == "--n") for (int d = 0; d < 3; ++d) o.n[d] = std::stoi(next());
+    else if (a == "--spacing") o.spacing = std::stod(next());
+    else if (a == "--steps") o.steps = std::stoi(next());
+    else if (a == "--dt") o.dt = std::stod(next());
+    else if (a == "--v0") o.v0 = std::stod(next());
+    else if (a == "--critical-stretch") o.critical_stretch = std::stod(next());
+    else if (a == "--threads") o.threads = std::stoi(next());
+    else if (a == "--dump") o.dump = next();
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      std::exit(2);
+    }
+  }
+  return o;
+}
+
+// The problem of bench/lammps/README.md: points at i·Δx (LAMMPS `lattice sc`), E = 200 GPa, ν = 1/4,
+// ρ = 7800, v = v0 (sin(w_x x) + ½ sin(w_y y), sin(w_y y) + ½ sin(w_z z), sin(w_z z) + ½ sin(w_x x)),
+// w_d = 2π/(n_d Δx).
+Problem benchmark_problem(const Options& o) {
+  Problem p;
+  p.deck_path = "<bench>";
+  p.dimension = 3;
+  p.spacing = o.spacing;
+  p.lattice_origin = {-0.5 * o.spacing, -0.5 * o.spacing, -0.5 * o.spacing};
+  const double E = 200e9, nu = 0.25, K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu));
+  MaterialSpec m;
+  m.name = "steel";
+  m.model = o.model == "lps" ? ModelKind::lps : ModelKind::pmb;
+  m.density = 7800;
+  m.elastic = {K, G, E, nu};
+  if (o.critical_stretch > 0) {
+    m.damage.enabled = true;
+    m.damage.critical_stretch = o.critical_stretch;
+  }
+  p.materials = {m};
+  BodySpec b;
+  b.name = "block";
+  b.material = "steel";
+  Shape box;
+  box.kind = Shape::Kind::box;
+  box.lo = {-0.5 * o.spacing, -0.5 * o.spacing, -0.5 * o.spacing};
+  box.hi = {(o.n[0] - 0.5) * o.spacing, (o.n[1] - 0.5) * o.spacing, (o.n[2] - 0.5) * o.spacing};
+  b.shape = box;
+  b.horizon = 3.015 * o.spacing;
+  p.bodies = {b};
+  const double w[3] = {2 * std::numbers::pi / (o.n[0] * o.spacing), 2 * std::numbers::pi / (o.n[1] * o.spacing),
+                       2 * std::numbers::pi / (o.n[2] * o.spacing)};
+  auto term = [&](const char* var, int d) { return "sin(" + std::to_string(w[d]) + "*" + var + ")"; };
+  InitialConditionSpec ic;
+  const std::string v0 = std::to_string(o.v0);
+  ic.component[0] = Expression{v0 + "*(" + term("x", 0) + "+0.5*" + term("y", 1) + ")", {}, false};
+  ic.component[1] = Expression{v0 + "*(" + term("y", 1) + "+0.5*" + term("z", 2) + ")", {}, false};
+  ic.component[2] = Expression{v0 + "*(" + term("z", 2) + "+0.5*" + term("x", 0) + ")", {}, false};
+  p.initial_conditions = {ic};
+  p.solver.num_steps = o.steps;
+  if (o.dt > 0) p.solver.time_step = o.dt;
+  p.output.progress = false;
+  return p;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  omp_set_num_threads(o.threads);
+  const Problem problem = benchmark_problem(o);
+
+  const auto t_setup = std::chrono::steady_clock::now();
+  Simulation sim(problem);  // discretization, neighbour build, materials
+  const double setup_s = seconds_since(t_setup);
+  sim.initialize();
+  const auto t_run = std::chrono::steady_clock::now();
+  for (int s = 0; s < o.steps; ++s) sim.step();
+  const double run_s = seconds_since(t_run);
+
+  const Totals totals = sim.totals();
+  const double points = static_cast<double>(sim.discretization().num_points());
+  const double bonds = static_cast<double>(sim.bonds().num_bonds());
+  const double updates_per_s_core = bonds * o.steps / run_s / o.threads;
+  // Bond storage: neighbour index (4 B), broken flag (1 B), CSR offsets (8 B per point).
+  const double neighbor_bytes = 4, state_bytes = 1, offset_bytes = 8 * (points + 1) / bonds;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  std::printf(
+      "{\"code\": \"peridot\", \"model\": \"%s\", \"points\": %.0f, \"directed_bonds\": %.0f, \"steps\": %d, "
+      "\"threads\": %d, \"dt\": %.17g, \"setup_s\": %.4f, \"loop_s\": %.4f, \"bond_updates_per_s_per_core\": %.4g, "
+      "\"bytes_per_bond\": %.3f, \"bytes_per_bond_breakdown\": {\"neighbor_index\": %.0f, \"broken_flag\": %.0f, "
+      "\"csr_offsets\": %.3f}, \"peak_rss_mib\": %.1f, \"kinetic_energy\": %.17g, \"strain_energy\": %.17g, "
+      "\"max_damage\": %.6g}\n",
+      o.model.c_str(), points, bonds, o.steps, o.threads, sim.time_step(), setup_s, run_s, updates_per_s_core,
+      neighbor_bytes + state_bytes + offset_bytes, neighbor_bytes, state_bytes, offset_bytes,
+      static_cast<double>(usage.ru_maxrss) / 1024.0, totals.kinetic_energy, totals.strain_energy, totals.max_damage);
+
+  if (!o.dump.empty()) {  // final state by lattice index, for comparison with LAMMPS
+    std::ofstream out(o.dump);
+    out.precision(17);
+    const Discretization& disc = sim.discretization();
+    for (std::size_t i = 0; i < disc.num_points(); ++i) {
+      out << disc.input_id[i];
+      for (int d = 0; d < 3; ++d) out << ' ' << disc.x(i, d) + sim.state().u(i, d);
+      for (int d = 0; d < 3; ++d) out << ' ' << sim.state().v(i, d);
+      out << '\n';
+    }
+  }
+  return 0;
+}
