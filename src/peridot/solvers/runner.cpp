@@ -177,9 +177,12 @@ void run_problem(const Problem& problem, const RunOptions& options) {
   for (const Diagnostic& w : problem.warnings) log.line(w.str());
   std::istringstream setup(describe_setup(sim));
   for (std::string line; std::getline(setup, line);) log.line(line);
-  if (sim.time_step() > sim.stable_time_step())
-    log.line(fmt::format("warning: time step {:.6g} s is above the stable time step {:.6g} s", sim.time_step(),
-                         sim.stable_time_step()));
+  if (sim.time_step() > sim.stable_time_step()) {
+    const std::string warning = fmt::format("warning: time step {:.6g} s is above the stable time step {:.6g} s",
+                                            sim.time_step(), sim.stable_time_step());
+    log.line(warning);
+    if (!options.log) std::cerr << warning << '\n';  // quiet runs still hear about it
+  }
 
   std::unique_ptr<ExodusWriter> exodus;
   if (output.exodus_every > 0) {
