@@ -2,6 +2,7 @@
 //   peridot run deck.yaml      run a deck (exit 2: bad deck, nothing written; exit 3: numerical failure)
 //   peridot check deck.yaml    validate a deck and print what the run would be, without running it
 //   peridot info [--markdown]  every model, key, unit and default, from the schema the parser uses
+//   peridot info --model NAME [--markdown]  the documentation page of a material model
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
@@ -9,6 +10,7 @@
 #include <iostream>
 
 #include "peridot/deck/deck.hpp"
+#include "peridot/materials/registry.hpp"
 #include "peridot/solvers/runner.hpp"
 #include "peridot/solvers/simulation.hpp"
 
@@ -32,7 +34,7 @@ int main(int argc, char** argv) {
   std::string deck;
   int threads = 0;
   bool quiet = false, markdown = false;
-  std::string output_dir;
+  std::string output_dir, model;
 
   CLI::App* run = app.add_subcommand("run", "run a deck");
   run->add_option("deck", deck, "the YAML deck")->required();
@@ -45,14 +47,18 @@ int main(int argc, char** argv) {
   check->add_option("-t,--threads", threads, "OpenMP threads");
 
   CLI::App* info = app.add_subcommand("info", "list every model, key, unit and default");
-  info->add_flag("--markdown", markdown, "print docs/deck.md");
+  info->add_flag("--markdown", markdown, "print Markdown: docs/deck.md, or docs/models/NAME.md with --model");
+  const std::vector<std::string_view> models = peridot::model_names();
+  info->add_option("--model", model, "print the documentation page of this material model")
+      ->check(CLI::IsMember(std::vector<std::string>(models.begin(), models.end())));
 
   CLI11_PARSE(app, argc, argv);
   if (threads > 0) omp_set_num_threads(threads);
 
   try {
     if (info->parsed()) {
-      peridot::print_schema(std::cout, markdown);
+      if (model.empty()) peridot::print_schema(std::cout, markdown);
+      else peridot::print_model_page(std::cout, *peridot::find_model(model), markdown);
       return 0;
     }
     peridot::Problem problem = peridot::load_deck(deck);

@@ -66,10 +66,13 @@ Problem benchmark_problem(const Options& o) {
   p.dimension = 3;
   p.spacing = o.spacing;
   p.lattice_origin = {-0.5 * o.spacing, -0.5 * o.spacing, -0.5 * o.spacing};
+  p.partial_volume = PartialVolumeKind::horizon;  // LAMMPS PERI scales V_j this way
   const double E = 200e9, nu = 0.25, K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu));
   MaterialSpec m;
   m.name = "steel";
   m.model = o.model == "lps" ? ModelKind::lps : ModelKind::pmb;
+  // LAMMPS peri/lps weighs bonds by 1/|ξ| (the scale of ω cancels in LPS, so δ/|ξ| is the same model).
+  m.influence = m.model == ModelKind::lps ? InfluenceKind::inverse_distance : InfluenceKind::constant;
   m.density = 7800;
   m.elastic = {K, G, E, nu};
   if (o.critical_stretch > 0) {

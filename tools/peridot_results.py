@@ -126,7 +126,7 @@ def plot_field(results, name: str = "damage", out: str | None = "damage.png", fr
                deformed: bool | float = False, view: str = "auto", center=(0.0, 0.0, 0.0),
                axis=(0.0, 0.0, 1.0), vmin=None, vmax=None, cmap: str = "viridis",
                point_size: float | None = None, title: str | None = None, ax=None,
-               length_unit: str = "mm"):
+               length_unit: str = "mm", bins=None):
     """Scatter plot of scalar nodal field ``name`` at ``frame``, written to ``out`` (PNG).
 
     results    a Results or a path to an Exodus file
@@ -136,6 +136,9 @@ def plot_field(results, name: str = "damage", out: str | None = "damage.png", fr
                order of the field value, so damaged points stay visible through the
                thickness), "unrolled" (θ about ``axis`` through ``center`` versus
                axial position: the natural view of a tube) or "3d" (a perspective scatter)
+    bins       None: a scatter plot of the points; an int or (nu, nv): for 2D views, the
+               mean of the field over each cell of a nu x nv grid (through-thickness or
+               through-wall average, drawn as an image; empty cells blank)
     ax         draw into this matplotlib Axes instead of a new figure (out may be None)
     Returns the matplotlib Axes.
     """
@@ -177,9 +180,16 @@ def plot_field(results, name: str = "damage", out: str | None = "damage.png", fr
                     w, h = 1.6, 1.0
                 aspect = h / w if w > 0 else 1.0
                 fig, ax = plt.subplots(figsize=(8, max(2.5, min(10, 8 * aspect + 1))))
-            order = np.argsort(values, kind="stable")
-            sc = ax.scatter(u[order], v[order], c=values[order], s=point_size, cmap=cmap,
-                            vmin=vmin, vmax=vmax, linewidths=0, rasterized=True)
+            if bins is None:
+                order = np.argsort(values, kind="stable")
+                sc = ax.scatter(u[order], v[order], c=values[order], s=point_size, cmap=cmap,
+                                vmin=vmin, vmax=vmax, linewidths=0, rasterized=True)
+            else:
+                total, ue, ve = np.histogram2d(u, v, bins=bins, weights=values)
+                count, _, _ = np.histogram2d(u, v, bins=(ue, ve))
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    mean = np.where(count > 0, total / count, np.nan)
+                sc = ax.pcolormesh(ue, ve, mean.T, cmap=cmap, vmin=vmin, vmax=vmax, rasterized=True)
             ax.set_xlabel(xl), ax.set_ylabel(yl)
             if view != "unrolled":
                 ax.set_aspect("equal")

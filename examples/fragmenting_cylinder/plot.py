@@ -23,15 +23,16 @@ def main(path):
         fig = plt.figure(figsize=(15, 6.5))
         ax1 = fig.add_subplot(1, 2, 1)
         pr.plot_field(res, "damage", out=None, ax=ax1, view="unrolled", vmin=0, vmax=1,
-                      point_size=2.0, title="damage, unrolled reference tube (θ, z)")
+                      bins=(141, 100),
+                      title="damage (mean through the wall), unrolled reference tube")
         ax2 = fig.add_subplot(1, 2, 2, projection="3d")
         pr.plot_field(res, "damage", out=None, ax=ax2, view="3d", deformed=True, vmin=0, vmax=1,
-                      point_size=0.4, title="damage on the deformed tube")
+                      point_size=0.3, title="damage on the deformed tube")
         ax2.view_init(elev=20, azim=-60)
         ax2.set_box_aspect((1, 1, 1))
         fig.suptitle(f"Expanding steel tube (LPS, critical stretch 0.02), t = {t * 1e6:.0f} µs")
         out = HERE / "damage.png"
-        fig.savefig(out, dpi=90, bbox_inches="tight")
+        fig.savefig(out, dpi=80, bbox_inches="tight")
         print(f"wrote {out}")
 
 

@@ -30,7 +30,7 @@ inline Problem box_problem(const BlockSetup& s) {
   p.thickness = s.dimension == 2 ? s.spacing : 1;
   p.spacing = s.spacing;
   p.jitter = s.jitter;
-  p.partial_volume = s.partial_volume;
+  p.partial_volume = s.partial_volume ? PartialVolumeKind::extended : PartialVolumeKind::none;
 
   MaterialSpec m;
   m.name = "solid";

@@ -12,6 +12,7 @@
 
 #include "peridot/deck/deck.hpp"
 #include "peridot/loads/expression.hpp"
+#include "peridot/materials/registry.hpp"
 
 namespace peridot {
 namespace {
@@ -66,7 +67,7 @@ const std::string deck_3d = R"deck(discretization:
   lattice_origin: [0.1, 0, 0]
   jitter: 0.1
   seed: 7
-  partial_volume: true
+  partial_volume: extended
 materials:
   steel:
     model: pmb
@@ -152,7 +153,7 @@ TEST(Deck, Parses2DDeckWithUnitsAndDefaults) {
   EXPECT_DOUBLE_EQ(p.horizon, 3.015 * 0.5e-3);
   EXPECT_EQ(p.jitter, 0);
   EXPECT_EQ(p.seed, 1u);
-  EXPECT_FALSE(p.partial_volume);
+  EXPECT_EQ(p.partial_volume, PartialVolumeKind::none);
 
   ASSERT_EQ(p.materials.size(), 1u);
   const MaterialSpec& glass = p.materials[0];
@@ -223,7 +224,7 @@ TEST(Deck, Parses3DDeckWithShapesAndPmbImpliedPoisson) {
   EXPECT_DOUBLE_EQ(p.lattice_origin.x, 0.1);
   EXPECT_DOUBLE_EQ(p.jitter, 0.1);
   EXPECT_EQ(p.seed, 7u);
-  EXPECT_TRUE(p.partial_volume);
+  EXPECT_EQ(p.partial_volume, PartialVolumeKind::extended);
 
   const ElasticConstants& c = p.materials[0].elastic;
   EXPECT_DOUBLE_EQ(c.bulk_modulus, 160e9);
@@ -595,6 +596,37 @@ TEST(Deck, BadDeckFixtures) {
     }
   }
   EXPECT_GE(checked, 9);
+}
+
+// The example on every model page (docs/models/<name>.md), set in a tiny deck of each dimension, parses
+// to a material of that model.
+TEST(Deck, ModelPageExamplesParse) {
+  for (const ModelInfo& model : material_models()) {
+    const std::string example(model.doc.example);
+    std::smatch name;
+    ASSERT_TRUE(std::regex_search(example, name, std::regex(R"(^materials:\n  (\w+):\n)")))
+        << model.name << ": the example must be a materials: block with one material";
+    struct Setting {
+      const char* discretization;
+      const char* box;
+    };
+    for (const Setting& setting : {Setting{"dimension: 3", "{min: [0, 0, 0], max: [0.01, 0.01, 0.01]}"},
+                                   Setting{"dimension: 2, plane: stress", "{min: [0, 0], max: [0.01, 0.01]}"}}) {
+      const std::string deck = fmt::format(
+          "discretization: {{{}, spacing: 1 mm, horizon_factor: 3.015}}\n{}\nbodies:\n"
+          "  sample: {{material: {}, shape: {{box: {}}}}}\nsolver: {{num_steps: 1}}\n",
+          setting.discretization, example, name[1].str(), setting.box);
+      try {
+        const Problem problem = parse(deck);
+        ASSERT_EQ(problem.materials.size(), 1u);
+        EXPECT_EQ(problem.materials[0].model, model.kind) << model.name;
+      } catch (const InputError& e) {
+        std::string all;
+        for (const Diagnostic& d : e.diagnostics()) all += d.str() + "\n";
+        ADD_FAILURE() << model.name << ": the page's example does not parse:\n" << deck << all;
+      }
+    }
+  }
 }
 
 }  // namespace

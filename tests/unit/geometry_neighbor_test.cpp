@@ -158,7 +158,8 @@ NeighborhoodOptions options_for(const Problem& p) {
   NeighborhoodOptions o;
   for (const BodySpec& b : p.bodies) o.horizon_of_block.push_back(b.horizon);
   o.precracks = p.precracks;
-  o.partial_volume_radius = p.partial_volume ? p.spacing / 2 : 0;
+  o.partial_volume_radius = p.partial_volume != PartialVolumeKind::none ? p.spacing / 2 : 0;
+  o.bond_beyond_horizon = p.partial_volume == PartialVolumeKind::extended;
   return o;
 }
 

@@ -107,7 +107,10 @@ struct Parser {
     p.lattice_origin = r["lattice_origin"].point;
     p.jitter = r["jitter"].number;
     p.seed = static_cast<std::uint64_t>(r["seed"].integer);
-    p.partial_volume = r["partial_volume"].boolean;
+    const std::string& partial = r["partial_volume"].text;
+    p.partial_volume = partial == "extended"  ? PartialVolumeKind::extended
+                       : partial == "horizon" ? PartialVolumeKind::horizon
+                                              : PartialVolumeKind::none;
     HorizonInput h = read_horizon(r);
     if (h.given()) p.horizon = resolve_horizon(h, "discretization");
   }

@@ -22,4 +22,9 @@ std::string resolved_deck_yaml(const Problem& problem);
 /// The deck reference generated from the schema tables: plain text (`peridot info`) or Markdown (docs/deck.md).
 void print_schema(std::ostream& out, bool markdown);
 
+struct ModelInfo;
+/// A material model's page: syntax, example, description, equations, parameter tables (from the schema),
+/// restrictions, references. Plain text (`peridot info --model NAME`) or Markdown (docs/models/NAME.md).
+void print_model_page(std::ostream& out, const ModelInfo& model, bool markdown);
+
 }  // namespace peridot

@@ -1,6 +1,9 @@
-// `peridot info` and docs/deck.md, generated from the schema tables the parser validates against.
+// `peridot info` and docs/deck.md, generated from the schema tables the parser validates against, and the
+// model pages (`peridot info --model NAME`, docs/models/NAME.md): the registry's ModelDoc text around a
+// syntax block and parameter tables generated from the same tables.
 #include <algorithm>
 #include <ostream>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -49,9 +52,14 @@ std::string presence(const KeySpec& k, const std::vector<KeySpec>& section) {
 using Row = std::vector<std::string>;
 const Row header = {"key", "type", "unit", "range", "presence", "description"};
 
+/// The SI unit of a key's value, or empty.
+std::string unit_of(const KeySpec& k) {
+  bool numeric = k.type == ValueType::number || k.type == ValueType::expression || k.type == ValueType::static_expression;
+  return numeric && k.unit != Unit::none ? std::string(si_unit(k.unit)) : "";
+}
+
 Row row_of(const KeySpec& k, const std::vector<KeySpec>& section) {
-  bool has_unit = k.type == ValueType::number || k.type == ValueType::expression || k.type == ValueType::static_expression;
-  return {std::string(k.key), type_name(k), has_unit && k.unit != Unit::none ? std::string(si_unit(k.unit)) : "",
+  return {std::string(k.key), type_name(k), unit_of(k),
           k.range.str(), presence(k, section), std::string(k.description)};
 }
 
@@ -64,9 +72,10 @@ void print_table(std::ostream& out, const std::vector<Row>& rows, bool markdown)
   if (markdown) {
     auto line = [&](const Row& r) {
       out << "|";
-      for (std::string cell : r) {
-        for (std::size_t at = cell.find('|'); at != std::string::npos; at = cell.find('|', at + 2)) cell.insert(at, "\\");
-        out << " " << cell << " |";
+      for (const std::string& cell : r) {
+        out << " ";
+        for (char c : cell) out << (c == '|' ? "\\|" : std::string_view(&c, 1));
+        out << " |";
       }
       out << "\n";
     };
@@ -88,24 +97,28 @@ void print_table(std::ostream& out, const std::vector<Row>& rows, bool markdown)
 }
 
 void print_section(std::ostream& out, std::string_view title, std::string_view description, const std::vector<KeySpec>& keys,
-                   bool markdown) {
-  out << (markdown ? fmt::format("## `{}`\n\n{}\n\n", title, description) : fmt::format("{}: {}\n", title, description));
+                   bool markdown, std::string_view heading = "##") {
+  out << (markdown ? fmt::format("{} `{}`\n\n{}\n\n", heading, title, description) : fmt::format("{}: {}\n", title, description));
   std::vector<Row> rows;
   for (const KeySpec& k : keys) rows.push_back(row_of(k, keys));
   print_table(out, rows, markdown);
 }
 
+std::string_view elastic_constants_rule(const ModelInfo& m) {
+  return m.bond_based ? "one modulus; ν is implied (1/4 in 3D and plane strain, 1/3 in plane stress)"
+                      : "any two of bulk_modulus, shear_modulus, youngs_modulus, poisson_ratio";
+}
+
 void print_models(std::ostream& out, bool markdown) {
   out << (markdown ? "## Material models\n\n" : "material models (materials.<name>.model):\n");
   for (const ModelInfo& m : material_models()) {
-    std::string elastic = m.bond_based ? "one modulus; ν is implied (1/4 in 3D and plane strain, 1/3 in plane stress)"
-                                       : "any two of bulk_modulus, shear_modulus, youngs_modulus, poisson_ratio";
     if (markdown) {
-      out << fmt::format("### `{}`\n\n{}.\n\n- Elastic constants: {}.\n- Reference: {}.\n\n", m.name, m.description, elastic,
-                         m.reference);
+      out << fmt::format("### `{}`\n\n{}.\n\n- Elastic constants: {}.\n- Reference: {}.\n- Page: [models/{}.md](models/{}.md) "
+                         "(`peridot info --model {}`).\n\n",
+                         m.name, m.description, elastic_constants_rule(m), m.reference, m.name, m.name, m.name);
     } else {
-      out << fmt::format("  {}: {}\n      elastic constants: {}\n      reference: {}\n", m.name, m.description, elastic,
-                         m.reference);
+      out << fmt::format("  {}: {}\n      elastic constants: {}\n      reference: {}\n      page: peridot info --model {}\n",
+                         m.name, m.description, elastic_constants_rule(m), m.reference, m.name);
     }
     if (!m.extra_keys.empty()) print_section(out, fmt::format("materials.<name> with model {}", m.name), "model parameters",
                                              m.extra_keys, markdown);
@@ -125,7 +138,70 @@ void print_units(std::ostream& out, bool markdown) {
   out << "\n";
 }
 
+/// The YAML skeleton of a section: `key: value` placeholders from the KeySpecs, nested mappings from their
+/// own sections, and the presence of each key as a comment.
+void print_syntax(std::ostream& out, std::string_view path, const std::vector<KeySpec>& keys, const ModelInfo& model,
+                  int indent) {
+  for (const KeySpec& k : keys) {
+    const bool nested = k.type == ValueType::mapping;
+    std::string value = k.key == "model" ? std::string(model.name) : nested ? "" : type_name(k);
+    if (const std::string unit = unit_of(k); !unit.empty()) value += fmt::format(" ({})", unit);
+    std::string line = fmt::format("{}{}:{}{}", std::string(indent, ' '), k.key, value.empty() ? "" : " ", value);
+    const std::string comment = k.key == "model" ? "" : presence(k, keys);
+    out << line << (comment.empty() ? "" : std::string(width(line) < 56 ? 56 - width(line) : 2, ' ') + "# " + comment)
+        << "\n";
+    if (nested) {
+      const std::string sub = fmt::format("{}.{}", path, k.key);
+      print_syntax(out, sub, deck_section(sub).keys, model, indent + 2);
+    }
+  }
+}
+
 }  // namespace
+
+void print_model_page(std::ostream& out, const ModelInfo& model, bool markdown) {
+  auto heading = [&](std::string_view title) { out << (markdown ? fmt::format("## {}\n\n", title) : fmt::format("{}\n\n", title)); };
+  auto text = [&](std::string_view body) { out << body << "\n\n"; };
+  auto code = [&](auto&& print) {
+    std::ostringstream block;
+    print(block);
+    if (markdown) {
+      out << "```yaml\n" << block.str() << "```\n\n";
+      return;
+    }
+    std::istringstream lines(block.str());
+    for (std::string line; std::getline(lines, line);) out << "    " << line << "\n";
+    out << "\n";
+  };
+
+  out << (markdown ? fmt::format("# Material model `{}`\n\nGenerated by `peridot info --model {} --markdown` from the model "
+                                 "registry and the schema the parser validates against.\n\n{}.\n\n",
+                                 model.name, model.name, model.description)
+                   : fmt::format("material model {}: {}\n\n", model.name, model.description));
+  heading("Syntax");
+  code([&](std::ostream& block) {
+    block << "materials:\n  <name>:\n";
+    print_syntax(block, "materials.<name>", material_keys(model), model, 4);
+  });
+  heading("Example");
+  code([&](std::ostream& block) { block << model.doc.example << "\n"; });
+  heading("Description");
+  text(model.doc.summary);
+  text(fmt::format("Elastic constants: {}.", elastic_constants_rule(model)));
+  heading("Equations");
+  text(model.doc.equations);
+  heading("Bond failure");
+  text(damage_doc());
+  heading("Parameters");
+  print_section(out, "materials.<name>", fmt::format("a material of model {}", model.name), material_keys(model), markdown, "###");
+  const SectionSpec& damage = deck_section("materials.<name>.damage");
+  print_section(out, damage.path, damage.description, damage.keys, markdown, "###");
+  heading("Restrictions");
+  text(model.doc.restrictions);
+  heading("References");
+  out << "- " << model.reference << "\n";
+  for (std::string_view reference : model.doc.further_references) out << "- " << reference << "\n";
+}
 
 void print_schema(std::ostream& out, bool markdown) {
   out << (markdown ? "# Peridot deck reference\n\nGenerated by `peridot info --markdown` from the schema the parser "

@@ -17,6 +17,10 @@ namespace peridot {
 enum class ModelKind { pmb, lps };
 enum class InfluenceKind { constant, inverse_distance, gaussian };  ///< ω = 1, δ/ξ, exp(−ξ²/δ²)
 enum class PlaneKind { none, stress, strain };                      ///< none in 3D
+/// Partial volumes: a neighbour cell cut by the horizon counts in proportion (linear ramp, ½ on the
+/// horizon). `extended` also bonds the cells centred just beyond δ (up to δ + ½Δx), which converges
+/// to the exact integrals; `horizon` bonds only |ξ| ≤ δ, the convention of LAMMPS PERI.
+enum class PartialVolumeKind { none, extended, horizon };
 
 /// Isotropic elastic constants, all four resolved from the two (or, for PMB, one) the deck gives.
 struct ElasticConstants {
@@ -139,7 +143,7 @@ struct Problem {
   Vec3 lattice_origin;   ///< lattice points sit at origin + (i + ½)Δx
   double jitter = 0;     ///< fraction of Δx, uniform in ±jitter·Δx per coordinate
   std::uint64_t seed = 1;
-  bool partial_volume = false;
+  PartialVolumeKind partial_volume = PartialVolumeKind::none;
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   std::vector<PrecrackSpec> precracks;

@@ -87,7 +87,8 @@ void emit_discretization(YAML::Emitter& out, const Problem& p) {
   emit_point(out, p.lattice_origin);
   out << YAML::Key << "jitter" << YAML::Value << number(p.jitter);
   out << YAML::Key << "seed" << YAML::Value << p.seed;
-  out << YAML::Key << "partial_volume" << YAML::Value << p.partial_volume;
+  const char* partial_volume[] = {"none", "extended", "horizon"};
+  out << YAML::Key << "partial_volume" << YAML::Value << partial_volume[static_cast<int>(p.partial_volume)];
   out << YAML::EndMap;
 }
 

@@ -199,8 +199,11 @@ std::vector<SectionSpec> make_sections() {
                  .description = "random shift of each point, fraction of Δx"},
                 {.key = "seed", .type = VT::integer, .default_yaml = "1", .range = non_negative,
                  .description = "random seed of the jitter"},
-                {.key = "partial_volume", .type = VT::boolean, .default_yaml = "false",
-                 .description = "weigh bonds by the part of the neighbour's cell inside the horizon"}}});
+                {.key = "partial_volume", .type = VT::choice, .default_yaml = "none",
+                 .description = "weigh bonds by the part of the neighbour's cell inside the horizon: none; extended "
+                                "(also bonds cells centred up to δ + Δx/2, converges); horizon (bonds within δ only, "
+                                "as LAMMPS PERI)",
+                 .choices = {"none", "extended", "horizon"}}}});
   s.push_back({"materials.<name>", "a material: a model from the registry and its parameters", common_material_keys()});
   s.push_back({"materials.<name>.damage", "bond breaking; omit for no damage", damage_keys()});
   s.push_back({"bodies.<name>", "a body: points filling a shape on the lattice, or read from a file",

@@ -6,12 +6,99 @@
 
 namespace peridot {
 
+namespace {
+
+// The pages of `peridot info --model NAME` (docs/models/NAME.md). Equations restate the header comments of
+// materials/pmb.hpp, lps.hpp and material.hpp/.cpp; keep them in step with the code.
+
+ModelDoc pmb_doc() {
+  return {
+      .summary = R"(Every bond is a linear spring between two points: its force depends on its own stretch only, not on
+the other bonds of either point. Peridot calibrates the micromodulus from the bulk modulus, so that an
+isotropic strain of a point with a full neighbourhood stores the classical strain energy; the shear
+response then follows and fixes the Poisson ratio, so the deck gives one modulus.)",
+      .equations = R"(Notation: ξ = |x′ − x| the reference bond length, Y = y′ − y the deformed bond, δ the horizon,
+V the neighbour volume, ω(ξ) the influence function (1, δ/ξ or exp(−ξ²/δ²)).
+
+- (1) bond stretch: s = (|Y| − ξ)/ξ
+- (2) pair force density: f = c(ξ) s Y/|Y| with c(ξ) = c0 ω(ξ); each end carries half, T⟨ξ⟩ = f/2
+- (3) pair energy w = ½ c(ξ) s² ξ; a point's energy density W = Σ ½ w V (half the energy of each of its bonds)
+- (4) 3D calibration, W = 9Ks²/2 for an isotropic stretch s: c0 = 9K / (2π ∫₀^δ ω ξ³ dξ), which is 18K/(πδ⁴) for ω = 1
+- (5) 2D calibration, thickness h, W = 2K′s²: c0 = 4K′ / (πh ∫₀^δ ω ξ² dξ), which is 12K′/(πhδ³) for ω = 1,
+  with K′ = K + G/3 in plane strain and 9KG/(3K + 4G) = E/(2(1 − ν)) in plane stress
+
+The integrals ∫₀^δ ω ξ^p dξ are evaluated in closed form for each influence function.)",
+      .restrictions = R"(- Bond-based: ν is fixed to 1/4 in 3D and plane strain and to 1/3 in plane stress. poisson_ratio may be
+  given only when it equals that value (within 10⁻³); for another ν use lps.
+- Linear elastic up to bond failure; no plasticity or viscosity.
+- The calibration assumes a full neighbourhood: points near a free surface have fewer bonds and respond
+  more softly (no surface correction is applied).
+- 2D decks use the forms (5) for the thickness h and the plane (stress or strain) of the discretization.)",
+      .further_references = {},
+      .example = R"(materials:
+  glass:
+    model: pmb
+    density: 2.44 g/cm^3
+    youngs_modulus: 72 GPa
+    damage: {fracture_energy: 3.8 J/m^2})",
+  };
+}
+
+ModelDoc lps_doc() {
+  return {
+      .summary = R"(An ordinary state-based model: the force of a bond depends on the stretch of that bond and on the
+dilatation θ of each of its end points, a weighted sum over all their bonds. The volumetric and deviatoric
+responses are separate, so any two elastic constants (any Poisson ratio in (−1, 0.5)) can be matched. A
+bond carries the force states of both its ends, each with that point's own θ and weighted volume m.)",
+      .equations = R"(Notation: ξ = |x′ − x| the reference bond length, e = |y′ − y| − ξ its extension, ω(ξ) the influence
+function (1, δ/ξ or exp(−ξ²/δ²)), V the neighbour volume; sums run over a point's intact bonds.
+
+3D (Silling et al. 2007):
+
+- (1) weighted volume: m = Σ ω ξ² V, computed once in the reference configuration
+- (2) dilatation: θ = (3/m) Σ ω ξ e V
+- (3) scalar force state: t = (3Kθ/m) ω ξ + (15G/m) ω e^d, with e^d = e − θξ/3
+- (4) energy density: W = Kθ²/2 + (15G/2m) Σ ω (e^d)² V
+
+2D, thickness h, V = h × area (reference/algorithms.md §6):
+
+- (5) dilatation: θ₂ = (2/m) Σ ω ξ e V, which equals ε₁₁ + ε₂₂ for a homogeneous strain
+- (6) scalar force state: t = (ω/m)[2K′ θ₂ ξ + 8G (e − θ₂ξ/2)]
+- (7) energy density: W = K′θ₂²/2 + (4G/m) Σ ω (e − θ₂ξ/2)² V,
+  with K′ = K + G/3 in plane strain and 9KG/(3K + 4G) in plane stress
+
+One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v, α_d) = (3, 3K, 15G) in 3D and
+(2, 2K′, 8G) in 2D, and W = α_v θ²/(2n) + (α_d/2m) Σ ω (e − θξ/n)² V; t = ∂W/∂e exactly.)",
+      .restrictions = R"(- Needs the dilatation pass: every step computes θ of every point over its intact bonds before the
+  forces, one more loop over the bonds than pmb.
+- m is computed once from the bonds at set-up (bonds across a pre-crack are not among them) and is not
+  updated when bonds break; broken bonds drop out of θ, the forces and the energy.
+- Linear elastic up to bond failure; no plasticity or viscosity. No surface correction is applied.
+- The critical stretch derived from fracture_energy uses the bond-based (pmb) micromodulus of the same K,
+  as is usual; it is not an energy release rate computed for the state-based model.
+- The stable time step is the Silling–Askari bound of the pmb model with the same bulk modulus and ω = 1;
+  for lps it is only an estimate, scaled by solver.safety_factor (default 0.8).
+- 2D decks use the forms (5)–(7) for the thickness h and the plane (stress or strain) of the discretization.)",
+      .further_references = {"Silling & Askari, Comput. Struct. 83 (2005) 1526-1535 (critical-stretch bond failure)"},
+      .example = R"(materials:
+  aluminium:
+    model: lps
+    density: 2.7 g/cm^3
+    youngs_modulus: 69 GPa
+    poisson_ratio: 0.33
+    influence: inverse_distance
+    damage: {critical_stretch: 0.005})",
+  };
+}
+
+}  // namespace
+
 const std::vector<ModelInfo>& material_models() {
   static const std::vector<ModelInfo> models = {
       {"pmb", ModelKind::pmb, "prototype microelastic brittle: bond-based, pairwise linear springs",
-       "Silling & Askari, Comput. Struct. 83 (2005) 1526-1535", true, {}},
+       "Silling & Askari, Comput. Struct. 83 (2005) 1526-1535", true, {}, pmb_doc()},
       {"lps", ModelKind::lps, "linear peridynamic solid: ordinary state-based, any Poisson ratio",
-       "Silling, Epton, Weckner, Xu & Askari, J. Elasticity 88 (2007) 151-184", false, {}},
+       "Silling, Epton, Weckner, Xu & Askari, J. Elasticity 88 (2007) 151-184", false, {}, lps_doc()},
   };
   return models;
 }
@@ -63,6 +150,21 @@ std::vector<KeySpec> damage_keys() {
       {.key = "fracture_energy", .unit = Unit::energy_per_area, .range = positive,
        .description = "G0 (J/m^2); s0 then follows from K and δ", .required = true, .one_of = "criterion"},
   };
+}
+
+std::string_view damage_doc() {
+  return R"(A bond breaks, irreversibly, once its stretch s = (|Y| − ξ)/ξ exceeds the critical stretch s0; compression
+never breaks a bond. A bond between two blocks uses the smaller of their s0 (a block without damage counts as
++∞); bonds touching a point of a no_fail node set never break. A broken bond carries no force and no
+energy. The damage of a point is the volume-weighted fraction of its broken bonds,
+φ = 1 − (intact neighbour volume)/(all neighbour volume). Bonds crossing a pre-crack are never created.
+
+s0 is given (critical_stretch) or follows from the fracture energy G0 (fracture_energy), the work to break
+every bond crossing a unit crack area, with the bond-based micromodulus c0 of the material's K and influence
+function (equations (4) and (5) of the pmb page):
+
+- (D1) 3D: G0 = (π c0 s0²/2) ∫₀^δ ω ξ⁴ dξ, so s0 = √(5G0/(9Kδ)) for ω = 1
+- (D2) 2D, thickness h: G0 = h c0 s0² ∫₀^δ ω ξ³ dξ, so s0 = √(πG0/(3K′δ)) for ω = 1)";
 }
 
 double bond_based_poisson_ratio(int dimension, PlaneKind plane) {

@@ -80,7 +80,8 @@ BondList build_neighborhood(const Discretization& disc, const NeighborhoodOption
   const std::size_t count = disc.num_points();
   const int dim = disc.dimension;
   const double max_horizon = *std::max_element(options.horizon_of_block.begin(), options.horizon_of_block.end());
-  const double reach = max_horizon + options.partial_volume_radius;
+  const double beyond = options.bond_beyond_horizon ? options.partial_volume_radius : 0.0;
+  const double reach = max_horizon + beyond;
   const CellGrid grid = bin_points(disc, reach);
 
   // Visits the neighbours of i in a fixed order; the caller gets them sorted afterwards.
@@ -98,12 +99,10 @@ BondList build_neighborhood(const Discretization& disc, const NeighborhoodOption
             if (other == i) continue;
             const Vec3 xj = disc.x.get(other);
             const double horizon = std::max(horizon_i, options.horizon_of_block[disc.block[other]]);
-            const double cutoff = horizon + options.partial_volume_radius;
+            const double cutoff = horizon + beyond;
             const Vec3 bond = xj - xi;
             if (dot(bond, bond) > cutoff * cutoff) continue;
-            if (options.partial_volume_radius > 0 &&
-                partial_volume_factor(norm(bond), horizon, options.partial_volume_radius) <= 0)
-              continue;
+            if (beyond > 0 && partial_volume_factor(norm(bond), horizon, options.partial_volume_radius) <= 0) continue;
             bool cut = false;
             for (const PrecrackSpec& crack : options.precracks) cut = cut || bond_crosses(crack, xi, xj, dim);
             if (!cut) visit(other);

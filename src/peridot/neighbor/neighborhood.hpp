@@ -10,16 +10,17 @@ namespace peridot {
 
 struct NeighborhoodOptions {
   std::vector<double> horizon_of_block;  ///< δ per block (m); a pair bonds within max(δ_i, δ_j)
-  /// With partial volumes, bonds reach to δ + r, r = ½Δx, and the neighbour volume is scaled by
-  /// partial_volume_factor() (cells cut by the horizon sphere count in proportion).
+  /// With partial volumes (r = ½Δx > 0) the neighbour volume is scaled by partial_volume_factor(), and
+  /// with bond_beyond_horizon the cells centred in (δ, δ + r) are bonded too.
   double partial_volume_radius = 0;
+  bool bond_beyond_horizon = false;
   std::vector<PrecrackSpec> precracks;
 };
 
 BondList build_neighborhood(const Discretization& disc, const NeighborhoodOptions& options);
 
-/// Fraction of a neighbour cell of half-width r at distance ξ inside a horizon δ (linear ramp, 1 well
-/// inside, 0 beyond δ + r). r = 0 means no correction.
+/// Fraction of a neighbour cell of half-width r at distance ξ inside a horizon δ: a linear ramp, 1 up to
+/// δ − r, ½ on the horizon, 0 at δ + r. r = 0 means no correction.
 inline double partial_volume_factor(double xi, double horizon, double r) {
   if (r <= 0 || xi <= horizon - r) return 1.0;
   if (xi >= horizon + r) return 0.0;

@@ -13,9 +13,11 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
   model_.disc = &disc_;
   model_.bonds = &bonds_;
   model_.ranges = block_ranges(disc_);
-  model_.partial_volume_radius = problem_.partial_volume ? 0.5 * problem_.spacing : 0.0;
+  const bool partial = problem_.partial_volume != PartialVolumeKind::none;
+  model_.partial_volume_radius = partial ? 0.5 * problem_.spacing : 0.0;
   NeighborhoodOptions neighborhood;
   neighborhood.partial_volume_radius = model_.partial_volume_radius;
+  neighborhood.bond_beyond_horizon = problem_.partial_volume == PartialVolumeKind::extended;
   neighborhood.precracks = problem_.precracks;
   for (const BodySpec& body : problem_.bodies) {
     model_.params.push_back(resolve_material(problem_.material_of(body), body.horizon, problem_));

@@ -32,6 +32,8 @@ class Simulation {
   /// Discretizes, builds bonds, node sets, materials and loads. Throws InputError for problems only
   /// visible once the points exist (an empty node set, an unreadable point file).
   explicit Simulation(const Problem& problem);
+  Simulation(const Simulation&) = delete;  // the model context points into this object
+  Simulation& operator=(const Simulation&) = delete;
 
   const Problem& problem() const { return problem_; }
   const Discretization& discretization() const { return disc_; }

@@ -1,0 +1,97 @@
+#!/usr/bin/python3
+"""Peridot against LAMMPS PERI on the identical problem, in the same run (bench/lammps/README.md):
+a simple-cubic block, δ = 3.015Δx, 200 velocity-Verlet steps, no damage, PMB and LPS.
+
+For every model and size it runs bench_explicit (1 thread) and LAMMPS twice (as shipped, and with its
+short-range contact pass switched off, `--no-contact`, which leaves the answers bitwise unchanged), then
+prints bond updates per second per core, the ratios, bytes per bond, peak memory, and how closely the
+answers agree (kinetic energy and displacements of every point).
+
+    /usr/bin/python3 bench/compare_lammps.py [--sizes 37,37,37 58,58,60] [--models pmb lps] [--steps 200]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "lammps"))
+import run_lammps  # noqa: E402  (the problem's definition: stable step, material)
+
+
+def run_json(command):
+    out = subprocess.run(command, capture_output=True, text=True, check=True).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def load_dump(path, lammps):
+    """(id, x, y, z, vx, vy, vz) rows sorted by 0-based lattice id."""
+    data = np.loadtxt(path, skiprows=9 if lammps else 0)
+    if lammps:
+        data[:, 0] -= 1
+    return data[np.argsort(data[:, 0])]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--sizes", nargs="+", default=["37,37,37", "58,58,60"])
+    p.add_argument("--models", nargs="+", default=["pmb", "lps"])
+    p.add_argument("--steps", type=int, default=200)
+    p.add_argument("--bench", default=os.path.join(HERE, "..", "build", "bench", "bench_explicit"))
+    p.add_argument("--lmp", default="lmp")
+    a = p.parse_args()
+    work = tempfile.mkdtemp(prefix="peridot_vs_lammps_")
+    spacing, volume = 1e-3, 1e-9
+    dt = 0.8 * run_lammps.stable_dt(spacing)  # both codes take this Δt (full volumes, as LAMMPS)
+    rows = []
+    for size in a.sizes:
+        n = size.split(",")
+        for model in a.models:
+            tag = f"{model}_{'x'.join(n)}"
+            peridot_dump = os.path.join(work, tag + ".peridot")
+            pd = run_json([a.bench, "--model", model, "--n", *n, "--steps", str(a.steps), "--threads", "1",
+                           "--dt", repr(dt), "--dump", peridot_dump])
+            lammps = []
+            for extra in ([], ["--no-contact"]):
+                lammps_dump = os.path.join(work, tag + ".lammps")
+                lammps.append(run_json([sys.executable, os.path.join(HERE, "lammps", "run_lammps.py"), "--model", model,
+                                        "--n", *n, "--steps", str(a.steps), "--dt", repr(dt), "--lmp", a.lmp,
+                                        "--workdir", os.path.join(work, tag + "_lmp"), "--dump", lammps_dump, *extra]))
+            lm, lm_bonds_only = lammps
+            P, L = load_dump(peridot_dump, False), load_dump(lammps_dump, True)
+            reference = np.round(L[:, 1:4] / spacing) * spacing
+            u_l, u_p = L[:, 1:4] - reference, P[:, 1:4] - reference
+            displacement_error = np.abs(u_p - u_l).max() / np.abs(u_l).max()
+            ke_lammps = lm["kinetic_energy"] * volume
+            rows.append({
+                "model": model, "points": pd["points"], "bonds": pd["directed_bonds"],
+                "same_bonds": pd["directed_bonds"] == lm["directed_bonds"],
+                "peridot": pd["bond_updates_per_s_per_core"], "lammps": lm["bond_updates_per_s_per_core"],
+                "lammps_no_contact": lm_bonds_only["bond_updates_per_s_per_core"],
+                "lammps_cpu_pct": min(lm["cpu_use_pct"], lm_bonds_only["cpu_use_pct"]),
+                "bytes_per_bond": pd["bytes_per_bond"], "peak_rss_mib": pd["peak_rss_mib"],
+                "kinetic_energy_rel_diff": abs(pd["kinetic_energy"] - ke_lammps) / ke_lammps,
+                "displacement_rel_diff": displacement_error})
+            print(json.dumps(rows[-1]), flush=True)
+
+    print()
+    print(f"{'model':5} {'points':>8} {'bonds':>10} {'peridot':>9} {'lammps':>9} {'ratio':>6} "
+          f"{'lmp bonds-only':>14} {'ratio':>6} {'B/bond':>6} {'RSS MiB':>8} {'ΔKE':>8} {'Δu':>8}")
+    for r in rows:
+        print(f"{r['model']:5} {r['points']:8.0f} {r['bonds']:10.0f} {r['peridot'] / 1e6:8.1f}M {r['lammps'] / 1e6:8.1f}M "
+              f"{r['peridot'] / r['lammps']:6.2f} {r['lammps_no_contact'] / 1e6:13.1f}M "
+              f"{r['peridot'] / r['lammps_no_contact']:6.2f} {r['bytes_per_bond']:6.2f} {r['peak_rss_mib']:8.1f} "
+              f"{r['kinetic_energy_rel_diff']:8.1e} {r['displacement_rel_diff']:8.1e}")
+    print("bond updates per second per core; ratio = Peridot / LAMMPS; 'bonds-only' = LAMMPS without its contact "
+          "pass (equal work); ΔKE, Δu = relative difference of the final kinetic energy and displacements")
+    if any(r["lammps_cpu_pct"] < 98 for r in rows):
+        print("warning: LAMMPS shared its core in some runs (CPU use < 98 %): the machine was busy")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
