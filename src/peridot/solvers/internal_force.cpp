@@ -77,26 +77,68 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
   double* fp = f.data();
   const BondList& bonds = *ctx.bonds;
   const auto& blocks = ctx.disc->block;
+  const double* volume = ctx.disc->volume.data();
+  const std::uint32_t* neighbors = bonds.neighbors.data();
+  const std::uint8_t* broken = bonds.broken.data();
+  const double* theta_p = theta.data();
+  const double* m_p = m.data();
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
+    const bool partial_volume = ctx.partial_volume_radius > 0;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
-      double force[3] = {0, 0, 0};
-      const double theta_i = theta[i], m_i = m[i];
-      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-        if (bonds.broken[b]) continue;
-        const std::uint32_t j = bonds.neighbors[b];
+      const double theta_i = theta_p[i], m_i = m_p[i];
+      double xi_[3], ui_[3];
+      for (int d = 0; d < 3; ++d) xi_[d] = x[3 * i + d], ui_[d] = up[3 * i + d];
+      // Neighbours are sorted, and blocks are contiguous index ranges, so the bonds to this block form
+      // one run [same_begin, same_end): a branch-free loop that vectorises. Bonds to other blocks
+      // (interfaces only) take the general path below.
+      const std::uint32_t* first = neighbors + bonds.offsets[i];
+      const std::uint32_t* last = neighbors + bonds.offsets[i + 1];
+      const std::uint32_t* same_begin = std::lower_bound(first, last, static_cast<std::uint32_t>(range.begin));
+      const std::uint32_t* same_end = std::lower_bound(same_begin, last, static_cast<std::uint32_t>(range.end));
+      const std::uint64_t b_begin = bonds.offsets[i] + (same_begin - first);
+      const std::uint64_t b_end = bonds.offsets[i] + (same_end - first);
+      double fx = 0, fy = 0, fz = 0;
+#pragma omp simd reduction(+ : fx, fy, fz)
+      for (std::uint64_t b = b_begin; b < b_end; ++b) {
+        const std::uint32_t j = neighbors[b];
+        double dy[3], xi2 = 0, y2 = 0;
+        for (int d = 0; d < Dim; ++d) {
+          const double dx = x[3 * j + d] - xi_[d];
+          dy[d] = dx + (up[3 * j + d] - ui_[d]);
+          xi2 += dx * dx;
+          y2 += dy[d] * dy[d];
+        }
+        const double xi = std::sqrt(xi2), length = std::sqrt(y2), e = length - xi;
+        const double omega = influence(p.influence, xi, p.horizon);
+        const double t = model.force_scalar(p, e, xi, omega, theta_i, m_i) +
+                         model.force_scalar(p, e, xi, omega, theta_p[j], m_p[j]);
+        double v = volume[j];
+        if (partial_volume) v *= partial_volume_factor(xi, p.horizon, ctx.partial_volume_radius);
+        const double scale = broken[b] ? 0.0 : t * v / length;
+        fx += scale * dy[0];
+        fy += scale * dy[1];
+        if constexpr (Dim == 3) fz += scale * dy[2];
+      }
+      // Interface bonds: t_ji from the neighbour's own model and parameters.
+      auto interface_bond = [&](std::uint64_t b) {
+        if (broken[b]) return;
+        const std::uint32_t j = neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
-        double t = model.force_scalar(p, g.e, g.xi, omega, theta_i, m_i);
-        if (j >= range.begin && j < range.end)
-          t += model.force_scalar(p, g.e, g.xi, omega, theta[j], m[j]);
-        else
-          t += other_block_force_scalar(ctx.params[blocks[j]], g.e, g.xi, theta[j], m[j]);
+        const double t = model.force_scalar(p, g.e, g.xi, omega, theta_i, m_i) +
+                         other_block_force_scalar(ctx.params[blocks[j]], g.e, g.xi, theta_p[j], m_p[j]);
         const double scale = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
-        for (int d = 0; d < Dim; ++d) force[d] += scale * g.y[d];
-      }
-      for (int d = 0; d < 3; ++d) fp[3 * i + d] = force[d];
+        fx += scale * g.y[0];
+        fy += scale * g.y[1];
+        if constexpr (Dim == 3) fz += scale * g.y[2];
+      };
+      for (std::uint64_t b = bonds.offsets[i]; b < b_begin; ++b) interface_bond(b);
+      for (std::uint64_t b = b_end; b < bonds.offsets[i + 1]; ++b) interface_bond(b);
+      fp[3 * i] = fx;
+      fp[3 * i + 1] = fy;
+      fp[3 * i + 2] = fz;
     }
   });
 }
