@@ -44,10 +44,10 @@ struct Forces {
 Forces evaluate(Simulation& sim, const VectorField& u) {
   const ModelContext& ctx = sim.model();
   State& s = sim.state();
-  compute_dilatation(ctx, u, s.weighted_volume, s.dilatation);
-  compute_internal_force(ctx, u, s.dilatation, s.weighted_volume, s.force);
+  compute_dilatation(ctx, u, s.dilatation);
+  compute_internal_force(ctx, u, s.dilatation, s.force);
   std::vector<double> W;
-  compute_strain_energy_density(ctx, u, s.dilatation, s.weighted_volume, W);
+  compute_strain_energy_density(ctx, u, s.dilatation, W);
   Forces out;
   const auto& V = sim.discretization().volume;
   for (std::size_t i = 0; i < W.size(); ++i) out.energy += W[i] * V[i];

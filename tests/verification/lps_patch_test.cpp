@@ -80,7 +80,7 @@ TEST_P(LpsPatch, IsotropicStrainGivesExactDilatation) {
   const double eps = 1e-3;
   const VectorField u = affine_displacement(disc, {eps, eps, eps, 0, 0, 0});
   std::vector<double> theta;
-  compute_dilatation(sim.model(), u, sim.state().weighted_volume, theta);
+  compute_dilatation(sim.model(), u, theta);
   const double horizon = s.horizon_factor * s.spacing;
   int checked = 0;
   for (std::size_t i = 0; i < disc.num_points(); ++i) {
@@ -99,10 +99,10 @@ TEST_P(LpsPatch, AffineDeformationGivesClassicalEnergyAndNoInteriorForce) {
   const Strain strain{1.0e-4, -0.4e-4, 0.7e-4, 0.5e-4, -0.3e-4, 0.2e-4};
   const VectorField u = affine_displacement(disc, strain);
   State& state = sim.state();
-  compute_dilatation(sim.model(), u, state.weighted_volume, state.dilatation);
-  compute_internal_force(sim.model(), u, state.dilatation, state.weighted_volume, state.force);
+  compute_dilatation(sim.model(), u, state.dilatation);
+  compute_internal_force(sim.model(), u, state.dilatation, state.force);
   std::vector<double> W;
-  compute_strain_energy_density(sim.model(), u, state.dilatation, state.weighted_volume, W);
+  compute_strain_energy_density(sim.model(), u, state.dilatation, W);
 
   const double expected = classical_energy(s, strain);
   const double horizon = s.horizon_factor * s.spacing;

@@ -17,12 +17,16 @@ namespace peridot {
 struct Lps {
   static constexpr bool uses_dilatation = true;
 
-  static double force_scalar(const MaterialParams& p, double e, double xi, double omega, double theta, double m) {
-    return omega / m * (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - theta * xi / p.dilatation_factor));
+  /// inverse_m = 1/m: a kernel multiplies, never divides, per bond.
+  static double force_scalar(const MaterialParams& p, double e, double xi, double omega, double theta,
+                             double inverse_m) {
+    return omega * inverse_m *
+           (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - theta * xi / p.dilatation_factor));
   }
-  static double bond_energy(const MaterialParams& p, double e, double xi, double omega, double theta, double m) {
+  static double bond_energy(const MaterialParams& p, double e, double xi, double omega, double theta,
+                            double inverse_m) {
     const double ed = e - theta * xi / p.dilatation_factor;
-    return 0.5 * p.alpha_deviatoric / m * omega * ed * ed;
+    return 0.5 * p.alpha_deviatoric * inverse_m * omega * ed * ed;
   }
   static double point_energy(const MaterialParams& p, double theta) {
     return p.alpha_volumetric * theta * theta / (2 * p.dilatation_factor);

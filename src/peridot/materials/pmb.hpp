@@ -15,12 +15,12 @@ struct Pmb {
 
   /// Scalar force state t = T⟨ξ⟩·M (N/m⁶) of a bond of reference length xi and extension e.
   static double force_scalar(const MaterialParams& p, double e, double xi, double omega, double /*theta*/,
-                             double /*m*/) {
+                             double /*inverse_m*/) {
     return 0.5 * p.micromodulus * omega * e / xi;
   }
   /// This point's share of the bond energy density per unit neighbour volume (J/m⁶): ½ · ½ c s² ξ.
   static double bond_energy(const MaterialParams& p, double e, double xi, double omega, double /*theta*/,
-                            double /*m*/) {
+                            double /*inverse_m*/) {
     return 0.25 * p.micromodulus * omega * e * e / xi;
   }
   static double point_energy(const MaterialParams&, double /*theta*/) { return 0; }

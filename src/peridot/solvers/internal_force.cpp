@@ -21,9 +21,10 @@ using namespace bond_loop;
 namespace {
 
 /// t_ji for a neighbour in another block (interfaces only): dispatch on the neighbour's model.
-inline double other_block_force_scalar(const MaterialParams& pj, double e, double xi, double theta_j, double m_j) {
+inline double other_block_force_scalar(const MaterialParams& pj, double e, double xi, double theta_j,
+                                       double inverse_m_j) {
   const double omega = influence(pj.influence, xi, pj.horizon);
-  return with_model(pj.model, [&](auto model) { return model.force_scalar(pj, e, xi, omega, theta_j, m_j); });
+  return with_model(pj.model, [&](auto model) { return model.force_scalar(pj, e, xi, omega, theta_j, inverse_m_j); });
 }
 
 }  // namespace
@@ -48,8 +49,8 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
   });
 }
 
-void compute_dilatation(const ModelContext& ctx, const VectorField& u, const std::vector<double>& m,
-                        std::vector<double>& theta) {
+void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta) {
+  const std::vector<double>& inverse_m = ctx.inverse_weighted_volume;
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
   const BondList& bonds = *ctx.bonds;
@@ -65,13 +66,13 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, const std
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         sum += influence(p.influence, g.xi, p.horizon) * g.xi * g.e * neighbor_volume(ctx, i, j, g.xi);
       }
-      theta[i] = m[i] > 0 ? p.dilatation_factor * sum / m[i] : 0.0;
+      theta[i] = p.dilatation_factor * sum * inverse_m[i];
     }
   });
 }
 
 void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                            const std::vector<double>& m, VectorField& f) {
+                            VectorField& f) {
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
   double* fp = f.data();
@@ -81,13 +82,13 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
   const std::uint32_t* neighbors = bonds.neighbors.data();
   const std::uint8_t* broken = bonds.broken.data();
   const double* theta_p = theta.data();
-  const double* m_p = m.data();
+  const double* inverse_m = ctx.inverse_weighted_volume.data();
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
     const bool partial_volume = ctx.partial_volume_radius > 0;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
-      const double theta_i = theta_p[i], m_i = m_p[i];
+      const double theta_i = theta_p[i], inverse_m_i = inverse_m[i];
       double xi_[3], ui_[3];
       for (int d = 0; d < 3; ++d) xi_[d] = x[3 * i + d], ui_[d] = up[3 * i + d];
       // Neighbours are sorted, and blocks are contiguous index ranges, so the bonds to this block form
@@ -112,8 +113,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
         }
         const double xi = std::sqrt(xi2), length = std::sqrt(y2), e = length - xi;
         const double omega = influence(p.influence, xi, p.horizon);
-        const double t = model.force_scalar(p, e, xi, omega, theta_i, m_i) +
-                         model.force_scalar(p, e, xi, omega, theta_p[j], m_p[j]);
+        const double t = model.force_scalar(p, e, xi, omega, theta_i, inverse_m_i) +
+                         model.force_scalar(p, e, xi, omega, theta_p[j], inverse_m[j]);
         double v = volume[j];
         if (partial_volume) v *= partial_volume_factor(xi, p.horizon, ctx.partial_volume_radius);
         const double scale = broken[b] ? 0.0 : t * v / length;
@@ -127,8 +128,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
         const std::uint32_t j = neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
-        const double t = model.force_scalar(p, g.e, g.xi, omega, theta_i, m_i) +
-                         other_block_force_scalar(ctx.params[blocks[j]], g.e, g.xi, theta_p[j], m_p[j]);
+        const double t = model.force_scalar(p, g.e, g.xi, omega, theta_i, inverse_m_i) +
+                         other_block_force_scalar(ctx.params[blocks[j]], g.e, g.xi, theta_p[j], inverse_m[j]);
         const double scale = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
         fx += scale * g.y[0];
         fy += scale * g.y[1];
@@ -144,7 +145,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
 }
 
 void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                                   const std::vector<double>& m, std::vector<double>& W) {
+                                   std::vector<double>& W) {
+  const std::vector<double>& inverse_m = ctx.inverse_weighted_volume;
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
   const BondList& bonds = *ctx.bonds;
@@ -159,7 +161,7 @@ void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
-        sum += model.bond_energy(p, g.e, g.xi, omega, theta[i], m[i]) * neighbor_volume(ctx, i, j, g.xi);
+        sum += model.bond_energy(p, g.e, g.xi, omega, theta[i], inverse_m[i]) * neighbor_volume(ctx, i, j, g.xi);
       }
       W[i] = sum;
     }

@@ -20,6 +20,8 @@ struct ModelContext {
   std::vector<BlockRange> ranges;      ///< per block
   double partial_volume_radius = 0;    ///< 0: no partial-volume correction
   std::vector<std::uint8_t> no_fail;   ///< per point: bonds touching it never break (empty = none)
+  /// 1/m per point (set once from compute_weighted_volume): the kernels multiply, never divide, by m.
+  std::vector<double> inverse_weighted_volume;
 
   bool any_dilatation() const;
   bool any_damage() const;
@@ -29,17 +31,16 @@ struct ModelContext {
 void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m);
 
 /// θ_i = (n/m_i) Σ_j ω ξ e V_j over intact bonds, for every point.
-void compute_dilatation(const ModelContext& ctx, const VectorField& u, const std::vector<double>& m,
-                        std::vector<double>& theta);
+void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta);
 
 /// Internal force density f (N/m³). θ must be current where a model uses it.
 void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                            const std::vector<double>& m, VectorField& f);
+                            VectorField& f);
 
 /// Strain energy density W_i (J/m³) of every point; Σ W_i V_i is the total strain energy, and
 /// f_i V_i = −∂(Σ W V)/∂u_i.
 void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                                   const std::vector<double>& m, std::vector<double>& W);
+                                   std::vector<double>& W);
 
 /// Silling–Askari stable time step min_i √(2ρ_i / Σ_j V_j c/ξ_ij) (s), before any safety factor.
 double stable_time_step(const ModelContext& ctx);

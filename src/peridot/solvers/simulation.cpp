@@ -37,6 +37,11 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
 
   state_.resize(disc_.num_points());
   compute_weighted_volume(model_, state_.weighted_volume);
+  model_.inverse_weighted_volume.resize(disc_.num_points());
+  for (std::size_t i = 0; i < disc_.num_points(); ++i) {
+    const double m = state_.weighted_volume[i];
+    model_.inverse_weighted_volume[i] = m > 0 ? 1 / m : 0.0;  // a point without bonds has no dilatation
+  }
   loads_ = std::make_unique<Loads>(problem_, disc_, node_sets_);
 
   stable_dt_ = peridot::stable_time_step(model_);
@@ -61,8 +66,8 @@ void Simulation::initialize() {
 
 void Simulation::compute_forces() {
   if (any_damage_) break_bonds(model_, state_.u);
-  if (any_dilatation_) compute_dilatation(model_, state_.u, state_.weighted_volume, state_.dilatation);
-  compute_internal_force(model_, state_.u, state_.dilatation, state_.weighted_volume, state_.force);
+  if (any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation);
+  compute_internal_force(model_, state_.u, state_.dilatation, state_.force);
 }
 
 void Simulation::kick(double half_dt) {
@@ -146,7 +151,7 @@ void Simulation::step() {
 
 void Simulation::update_output_fields() {
   compute_damage(model_, state_.damage);
-  if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.weighted_volume, state_.dilatation);
+  if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation);
 }
 
 Totals Simulation::totals() {
@@ -157,7 +162,7 @@ Totals Simulation::totals() {
   totals.kinetic_energy = deterministic_sum(n, [&](std::size_t i) {
     return 0.5 * density(i) * disc_.volume[i] * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
   });
-  compute_strain_energy_density(model_, state_.u, state_.dilatation, state_.weighted_volume, energy_density_);
+  compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_);
   totals.strain_energy = deterministic_sum(n, [&](std::size_t i) { return energy_density_[i] * disc_.volume[i]; });
   for (int d = 0; d < 3; ++d)
     totals.momentum[d] = deterministic_sum(n, [&](std::size_t i) { return density(i) * disc_.volume[i] * v[3 * i + d]; });
