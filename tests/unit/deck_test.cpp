@@ -349,6 +349,8 @@ TEST(Deck, PointsFileBodyNeedsNoSpacing) {
   expect_error(missing, position_of(missing, "nowhere.txt"), "file not found");
   std::string shape_without_spacing = replaced(deck_2d, "  spacing: 0.5 mm\n", "");
   expect_error(shape_without_spacing, {1, 1}, "missing required key 'spacing' (body 'plate' is filled from a shape");
+  std::string partial_without_spacing = replaced(deck, "  dimension: 2\n", "  dimension: 2\n  partial_volume: extended\n");
+  expect_error(partial_without_spacing, {1, 1}, "partial_volume needs 'spacing'");
 }
 
 TEST(Deck, PrintsSchemaFromTheTables) {

@@ -315,9 +315,15 @@ struct Parser {
     check_spacing_given();
   }
 
-  /// The lattice spacing is needed as soon as one body is a shape filled on the lattice.
+  /// The lattice spacing is needed as soon as one body is a shape filled on the lattice, or partial volumes
+  /// are asked for.
   void check_spacing_given() {
     if (spacing) return;
+    if (p.partial_volume != PartialVolumeKind::none) {
+      ctx.error(discretization_pos, "discretization",
+                "partial_volume needs 'spacing' (the size of the cells the horizon cuts)");
+      return;
+    }
     for (const BodySpec& b : p.bodies)
       if (b.points_file.empty()) {
         ctx.error(discretization_pos, "discretization",
