@@ -89,8 +89,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
       const double theta_i = theta_p[i], inverse_m_i = inverse_m[i];
-      double xi_[3], ui_[3];
-      for (int d = 0; d < 3; ++d) xi_[d] = x[3 * i + d], ui_[d] = up[3 * i + d];
+      double x_i[3], u_i[3];  // position and displacement of point i
+      for (int d = 0; d < 3; ++d) x_i[d] = x[3 * i + d], u_i[d] = up[3 * i + d];
       // Neighbours are sorted, and blocks are contiguous index ranges, so the bonds to this block form
       // one run [same_begin, same_end): a branch-free loop that vectorises. Bonds to other blocks
       // (interfaces only) take the general path below.
@@ -106,8 +106,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
         const std::uint32_t j = neighbors[b];
         double dy[3], xi2 = 0, y2 = 0;
         for (int d = 0; d < Dim; ++d) {
-          const double dx = x[3 * j + d] - xi_[d];
-          dy[d] = dx + (up[3 * j + d] - ui_[d]);
+          const double dx = x[3 * j + d] - x_i[d];
+          dy[d] = dx + (up[3 * j + d] - u_i[d]);
           xi2 += dx * dx;
           y2 += dy[d] * dy[d];
         }
