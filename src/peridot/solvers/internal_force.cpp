@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "peridot/damage/critical_stretch.hpp"
 #include "peridot/solvers/bond_loop.hpp"
 
 namespace peridot {
@@ -49,11 +50,18 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
   });
 }
 
-void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta) {
+/// Critical stretch of a bond: the smaller of its two blocks' (j outside range = another block).
+inline double pair_critical_stretch(const ModelContext& ctx, const MaterialParams& p, BlockRange range, std::uint32_t j) {
+  if (j >= range.begin && j < range.end) return p.critical_stretch;
+  return std::min(p.critical_stretch, ctx.params[ctx.disc->block[j]].critical_stretch);
+}
+
+void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds) {
+  const BondFailure failure(ctx);
   const std::vector<double>& inverse_m = ctx.inverse_weighted_volume;
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
-  const BondList& bonds = *ctx.bonds;
+  BondList& bonds = *ctx.bonds;  // broken flags are written when fail_bonds
   theta.resize(ctx.disc->num_points());
   for_each_block(ctx, [&](auto dim, auto, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
@@ -64,6 +72,10 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
         if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
+        if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, range, j))) {
+          bonds.broken[b] = 1;
+          continue;
+        }
         sum += influence(p.influence, g.xi, p.horizon) * g.xi * g.e * neighbor_volume(ctx, i, j, g.xi);
       }
       theta[i] = p.dilatation_factor * sum * inverse_m[i];
@@ -72,7 +84,8 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
 }
 
 void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                            VectorField& f) {
+                            VectorField& f, bool fail_bonds) {
+  const BondFailure failure(ctx);
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
   double* fp = f.data();
@@ -80,7 +93,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
   const auto& blocks = ctx.disc->block;
   const double* volume = ctx.disc->volume.data();
   const std::uint32_t* neighbors = bonds.neighbors.data();
-  const std::uint8_t* broken = bonds.broken.data();
+  std::uint8_t* broken = ctx.bonds->broken.data();
   const double* theta_p = theta.data();
   const double* inverse_m = ctx.inverse_weighted_volume.data();
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
@@ -117,6 +130,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
                          model.force_scalar(p, e, xi, omega, theta_p[j], inverse_m[j]);
         double v = volume[j];
         if (partial_volume) v *= partial_volume_factor(xi, p.horizon, ctx.partial_volume_radius);
+        if (fail_bonds && !broken[b] && failure.fails(i, j, e, xi, p.critical_stretch)) broken[b] = 1;
         const double scale = broken[b] ? 0.0 : t * v / length;
         fx += scale * dy[0];
         fy += scale * dy[1];
@@ -127,6 +141,10 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
         if (broken[b]) return;
         const std::uint32_t j = neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
+        if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, range, j))) {
+          broken[b] = 1;
+          return;
+        }
         const double omega = influence(p.influence, g.xi, p.horizon);
         const double t = model.force_scalar(p, g.e, g.xi, omega, theta_i, inverse_m_i) +
                          other_block_force_scalar(ctx.params[blocks[j]], g.e, g.xi, theta_p[j], inverse_m[j]);

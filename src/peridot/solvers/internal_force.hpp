@@ -30,12 +30,15 @@ struct ModelContext {
 /// m_i = Σ_j ω ξ² V_j over all bonds (undamaged reference), for every point (m⁵; 2D m⁴·h).
 void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m);
 
-/// θ_i = (n/m_i) Σ_j ω ξ e V_j over intact bonds, for every point.
-void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta);
+/// θ_i = (n/m_i) Σ_j ω ξ e V_j over intact bonds, for every point. With fail_bonds, bonds that fail now
+/// (damage/critical_stretch.hpp) are marked broken first.
+void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta,
+                        bool fail_bonds = false);
 
 /// Internal force density f (N/m³). θ must be current where a model uses it.
+/// With fail_bonds, bonds that fail now are marked broken first (when no dilatation pass ran this step).
 void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                            VectorField& f);
+                            VectorField& f, bool fail_bonds = false);
 
 /// Strain energy density W_i (J/m³) of every point; Σ W_i V_i is the total strain energy, and
 /// f_i V_i = −∂(Σ W V)/∂u_i.

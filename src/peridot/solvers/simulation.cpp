@@ -65,9 +65,10 @@ void Simulation::initialize() {
 }
 
 void Simulation::compute_forces() {
-  if (any_damage_) break_bonds(model_, state_.u);
-  if (any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation);
-  compute_internal_force(model_, state_.u, state_.dilatation, state_.force);
+  // Bond failure is checked in the first pass that computes every bond's stretch (on u^{n+1}, before any
+  // force uses the bond).
+  if (any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation, any_damage_);
+  compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && !any_dilatation_);
 }
 
 void Simulation::kick(double half_dt) {
