@@ -28,6 +28,12 @@ inline double other_block_force_scalar(const MaterialParams& pj, double e, doubl
   return with_model(pj.model, [&](auto model) { return model.force_scalar(pj, e, xi, omega, theta_j, inverse_m_j); });
 }
 
+/// Critical stretch of a bond: the smaller of its two blocks' (j outside range = another block).
+inline double pair_critical_stretch(const ModelContext& ctx, const MaterialParams& p, BlockRange range, std::uint32_t j) {
+  if (j >= range.begin && j < range.end) return p.critical_stretch;
+  return std::min(p.critical_stretch, ctx.params[ctx.disc->block[j]].critical_stretch);
+}
+
 }  // namespace
 
 void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
@@ -48,12 +54,6 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
       m[i] = sum;
     }
   });
-}
-
-/// Critical stretch of a bond: the smaller of its two blocks' (j outside range = another block).
-inline double pair_critical_stretch(const ModelContext& ctx, const MaterialParams& p, BlockRange range, std::uint32_t j) {
-  if (j >= range.begin && j < range.end) return p.critical_stretch;
-  return std::min(p.critical_stretch, ctx.params[ctx.disc->block[j]].critical_stretch);
 }
 
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds) {
