@@ -154,6 +154,10 @@ struct Parser {
                                                     : InfluenceKind::constant;
       if (model) m.elastic = resolve_elastic(r, *model);
       if (r.given("damage")) m.damage = parse_damage(r["damage"], r.path_of("damage"));
+      m.yield_stress = r.optional_number("yield_stress").value_or(0);
+      m.hardening_modulus = r.optional_number("hardening_modulus").value_or(0);
+      m.relaxing_fraction = r.optional_number("relaxing_fraction").value_or(0);
+      m.relaxation_time = r.optional_number("relaxation_time").value_or(0);
       p.materials.push_back(std::move(m));
     });
   }

@@ -14,7 +14,7 @@
 
 namespace peridot {
 
-enum class ModelKind { pmb, lps };
+enum class ModelKind { pmb, lps, lps_plastic, lps_viscoelastic };
 enum class InfluenceKind { constant, inverse_distance, gaussian };  ///< ω = 1, δ/ξ, exp(−ξ²/δ²)
 enum class PlaneKind { none, stress, strain };                      ///< none in 3D
 /// Partial volumes: a neighbour cell cut by the horizon counts in proportion (linear ramp, ½ on the
@@ -44,6 +44,11 @@ struct MaterialSpec {
   ElasticConstants elastic;
   InfluenceKind influence = InfluenceKind::constant;
   DamageSpec damage;
+  // Inelastic parameters (0 for the models that have none; see the model pages).
+  double yield_stress = 0;         ///< σ_y (Pa), lps_plastic
+  double hardening_modulus = 0;    ///< H (Pa), lps_plastic: σ_Y = σ_y + H ε̄p
+  double relaxing_fraction = 0;    ///< λ_i (-), lps_viscoelastic: share of the deviatoric stiffness that relaxes
+  double relaxation_time = 0;      ///< τ_b (s), lps_viscoelastic
 };
 
 /// Where a body's points come from: a shape filled on the lattice, or a text point file

@@ -301,7 +301,7 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "point", .type = VT::point, .description = "position (m)", .required = true},
                 {.key = "field", .type = VT::choice, .description = "sampled field", .required = true,
                  .choices = {"displacement_x", "displacement_y", "displacement_z", "velocity_x", "velocity_y", "velocity_z",
-                             "damage", "dilatation"}}}});
+                             "damage", "dilatation", "equivalent_plastic_strain", "dissipation"}}}});
   return s;
 }
 

@@ -5,6 +5,8 @@
 #include <utility>
 
 #include "peridot/materials/lps.hpp"
+#include "peridot/materials/lps_plastic.hpp"
+#include "peridot/materials/lps_viscoelastic.hpp"
 #include "peridot/materials/pmb.hpp"
 
 namespace peridot {
@@ -14,6 +16,8 @@ decltype(auto) with_model(ModelKind kind, F&& f) {
   switch (kind) {
     case ModelKind::pmb: return std::forward<F>(f)(Pmb{});
     case ModelKind::lps: return std::forward<F>(f)(Lps{});
+    case ModelKind::lps_plastic: return std::forward<F>(f)(LpsPlastic{});
+    case ModelKind::lps_viscoelastic: return std::forward<F>(f)(LpsViscoelastic{});
   }
   return std::forward<F>(f)(Pmb{});
 }

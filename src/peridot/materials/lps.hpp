@@ -10,26 +10,30 @@
 // One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v, α_d) = (3, 3K, 15G) in 3D
 // and (2, 2K′, 8G) in 2D; W = α_v θ²/(2n) + (α_d/2m) Σ ω (e − θξ/n)² V. Since Σ ω ξ (e − θξ/n) V = 0,
 // t = ∂W/∂e exactly.
+#include <cstdint>
+
 #include "peridot/materials/material.hpp"
 
 namespace peridot {
 
 struct Lps {
   static constexpr bool uses_dilatation = true;
+  static constexpr int bond_history_arrays = 0;
 
-  /// inverse_m = 1/m: a kernel multiplies, never divides, per bond.
-  static double force_scalar(const MaterialParams& p, double e, double xi, double omega, double theta,
-                             double inverse_m) {
-    return omega * inverse_m *
+  /// 1/m is precomputed per point: a kernel multiplies, never divides, per bond.
+  static double force_scalar(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
+                             double e, double xi, double omega) {
+    const double theta = s.theta[i];
+    return omega * s.inverse_m[i] *
            (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - theta * xi / p.dilatation_factor));
   }
-  static double bond_energy(const MaterialParams& p, double e, double xi, double omega, double theta,
-                            double inverse_m) {
-    const double ed = e - theta * xi / p.dilatation_factor;
-    return 0.5 * p.alpha_deviatoric * inverse_m * omega * ed * ed;
+  static double bond_energy(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
+                            double e, double xi, double omega) {
+    const double ed = e - s.theta[i] * xi / p.dilatation_factor;
+    return 0.5 * p.alpha_deviatoric * s.inverse_m[i] * omega * ed * ed;
   }
-  static double point_energy(const MaterialParams& p, double theta) {
-    return p.alpha_volumetric * theta * theta / (2 * p.dilatation_factor);
+  static double point_energy(const MaterialParams& p, const KernelFields& s, std::size_t i) {
+    return p.alpha_volumetric * s.theta[i] * s.theta[i] / (2 * p.dilatation_factor);
   }
 };
 

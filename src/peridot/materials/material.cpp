@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "peridot/materials/lps.hpp"
+#include "peridot/materials/lps_plastic.hpp"
 #include "peridot/materials/pmb.hpp"
 
 namespace peridot {
@@ -13,20 +14,47 @@ double planar_bulk_modulus(const ElasticConstants& c, PlaneKind plane) {
   return plane == PlaneKind::stress ? 9 * K * G / (3 * K + 4 * G) : K + G / 3;
 }
 
+namespace {
+
+/// I_p(a) = ∫₀^a x^p e^{−x²} dx by the recurrence I_p = −a^{p−1} e^{−a²}/2 + (p − 1)/2 · I_{p−2}.
+double gaussian_moment(int p, double a) {
+  const double ea = std::exp(-a * a);
+  double value = p % 2 == 0 ? std::sqrt(std::numbers::pi) / 2 * std::erf(a) : (1 - ea) / 2;
+  for (int q = p % 2 + 2; q <= p; q += 2) value = -0.5 * std::pow(a, q - 1) * ea + (q - 1) / 2.0 * value;
+  return value;
+}
+
+}  // namespace
+
 double influence_moment(InfluenceKind kind, double horizon, int p) {
   const double scale = std::pow(horizon, p + 1);
   switch (kind) {
     case InfluenceKind::constant: return scale / (p + 1);
     case InfluenceKind::inverse_distance: return scale / p;
-    case InfluenceKind::gaussian: {
-      // I_p = ∫₀¹ x^p e^{−x²} dx by the recurrence I_p = −1/(2e) + (p − 1)/2 · I_{p−2}.
-      double even = std::sqrt(std::numbers::pi) / 2 * std::erf(1.0), odd = (1 - std::exp(-1.0)) / 2;
-      double value = p % 2 == 0 ? even : odd;
-      for (int q = p % 2 + 2; q <= p; q += 2) value = -0.5 * std::exp(-1.0) + (q - 1) / 2.0 * value;
-      return scale * value;
-    }
+    case InfluenceKind::gaussian: return scale * gaussian_moment(p, 1.0);
   }
   return 0;
+}
+
+double influence_squared_moment(InfluenceKind kind, double horizon, int p) {
+  const double scale = std::pow(horizon, p + 1);
+  switch (kind) {
+    case InfluenceKind::constant: return scale / (p + 1);
+    case InfluenceKind::inverse_distance: return scale / (p - 1);
+    // ∫₀¹ x^p e^{−2x²} dx = 2^{−(p+1)/2} I_p(√2).
+    case InfluenceKind::gaussian: return scale * std::pow(2.0, -(p + 1) / 2.0) * gaussian_moment(p, std::sqrt(2.0));
+  }
+  return 0;
+}
+
+void set_time_step(std::vector<MaterialParams>& params, double dt) {
+  for (MaterialParams& p : params) {
+    if (p.model != ModelKind::lps_viscoelastic) continue;
+    const double x = dt / p.relaxation_time;
+    p.viscous_decay = std::exp(-x);
+    // β = 1 − (1 − ε)/x, written with expm1 so that a small Δt/τ_b keeps its digits.
+    p.viscous_ramp = dt > 0 ? 1 + std::expm1(-x) / x : 0.0;
+  }
 }
 
 namespace {
@@ -67,6 +95,8 @@ MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const 
       p.micromodulus = c0;
       break;
     case ModelKind::lps:
+    case ModelKind::lps_plastic:
+    case ModelKind::lps_viscoelastic:
       if (problem.dimension == 3) {
         p.dilatation_factor = 3;
         p.alpha_volumetric = 3 * spec.elastic.bulk_modulus;
@@ -77,6 +107,15 @@ MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const 
         p.alpha_deviatoric = 8 * spec.elastic.shear_modulus;
       }
       break;
+  }
+  if (spec.model == ModelKind::lps_plastic) {
+    p.yield_stress = spec.yield_stress;
+    p.hardening_modulus = spec.hardening_modulus;
+    p.yield_norm_factor = plastic_yield_norm_factor(spec.influence, horizon, problem.dimension, problem.plane, problem.thickness);
+  }
+  if (spec.model == ModelKind::lps_viscoelastic) {
+    p.relaxing_fraction = spec.relaxing_fraction;
+    p.relaxation_time = spec.relaxation_time;
   }
   if (spec.damage.enabled) {
     if (spec.damage.critical_stretch) p.critical_stretch = *spec.damage.critical_stretch;

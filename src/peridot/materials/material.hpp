@@ -4,6 +4,7 @@
 // live in solvers/internal_force.cpp.
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "peridot/deck/problem.hpp"
 
@@ -25,10 +26,35 @@ struct MaterialParams {
   double dilatation_factor = 3;
   /// Bond fails when its stretch exceeds this; +∞ without damage.
   double critical_stretch = std::numeric_limits<double>::infinity();
+  /// lps_plastic (Mitchell): a point yields when ‖t^d‖ > k σ_Y, σ_Y = σ_y + H ε̄p, with
+  /// k = √(2ψ0)/σ_y from the calibration (lps_plastic.hpp).
+  double yield_stress = 0;
+  double hardening_modulus = 0;
+  double yield_norm_factor = 0;
+  /// lps_viscoelastic: λ_i, τ_b and, for the current Δt, ε = exp(−Δt/τ_b) and β = 1 − (τ_b/Δt)(1 − ε)
+  /// (set_time_step; Δt = 0 gives ε = 1, β = 0: no time passes).
+  double relaxing_fraction = 0;
+  double relaxation_time = 0;
+  double viscous_decay = 1;
+  double viscous_ramp = 0;
   /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
   /// the Silling–Askari stable time step estimate for every model.
   double stable_micromodulus = 0;
 };
+
+/// What a kernel may read besides its bond: per-point fields indexed by the point, per-bond history by
+/// the bond of that point's family (the partner's bond through BondList::reverse). Pointers the models
+/// of a problem do not need are null.
+struct KernelFields {
+  const double* theta = nullptr;        ///< θ
+  const double* inverse_m = nullptr;    ///< 1/m
+  const double* yield_scale = nullptr;  ///< r of this step's return map (lps_plastic)
+  const double* bond0 = nullptr;        ///< MaterialHistory::bond[0]
+  const double* bond1 = nullptr;        ///< MaterialHistory::bond[1]
+};
+
+/// Sets the Δt-dependent constants of every block (lps_viscoelastic's ε and β).
+void set_time_step(std::vector<MaterialParams>& params, double dt);
 
 /// Builds the block parameters from the deck. Throws InputError when the fracture energy cannot give a
 /// critical stretch (non-positive result).
@@ -50,5 +76,7 @@ inline double influence(InfluenceKind kind, double xi, double horizon) {
 
 /// ∫₀^δ ω(ξ) ξ^p dξ in closed form, for the calibration of the constants (p = 2, 3, 4).
 double influence_moment(InfluenceKind kind, double horizon, int p);
+/// ∫₀^δ ω(ξ)² ξ^p dξ in closed form (p = 3, 4), for the yield calibration of lps_plastic.
+double influence_squared_moment(InfluenceKind kind, double horizon, int p);
 
 }  // namespace peridot

@@ -96,6 +96,93 @@ One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v
   };
 }
 
+ModelDoc lps_plastic_doc() {
+  return {
+      .summary = R"(Mitchell's ordinary state-based elastic-plastic solid: the lps model whose deviatoric extension splits
+into an elastic and a plastic part, the plastic part a history value of every bond. A point yields when the
+norm of its deviatoric force state reaches a value calibrated from the uniaxial yield stress; the return to
+the yield surface is the backward-Euler radial return of Mitchell's algorithm, solved exactly in one step.
+The volumetric response stays elastic. Linear isotropic hardening is optional, with the equivalent plastic
+strain defined through the plastic work; critical-stretch damage, when given, acts on the total stretch.)",
+      .equations = R"(Notation as on the lps page (n, α_v, α_d = 3, 3K, 15G in 3D; 2, 2K′, 8G in 2D); e^dp the plastic
+extension of a bond, ε̄p the equivalent plastic strain of a point, σ_Y = σ_y + H ε̄p.
+
+- (P1) t = (ω/m)[α_v θ ξ + α_d (e^d − e^dp)], e^d = e − θξ/n
+- (P2) yield function f = ‖t^d‖²/2 − ψ0, ‖t^d‖² = Σ (t^d)² V over the intact bonds; √(2ψ0) = k σ_Y
+- (P3) trial state t^d_tr = α ω (e^d_{n+1} − e^dp_n), α = α_d/m; the step is elastic when ‖t^d_tr‖ ≤ k σ_Y,n
+- (P4) otherwise t^d_{n+1} = r t^d_tr, r = kσ_Y,n+1/‖t^d_tr‖, and e^dp_{n+1} = e^dp_n + (1 − r)(e^d_{n+1} − e^dp_n)
+  (for ω = 1 exactly Mitchell's Δλ = (‖t^d_tr‖/√(2ψ0) − 1)/α; for another ω the flow rule is ė^dp = λ t^d/ω,
+  which keeps the return radial)
+- (P5) plastic work ΔW_p = Σ t^d_{n+1} Δe^dp V = r(1 − r)S/α, S = Σ (t^d_tr)²/ω V, and σ_Y,n+1 Δε̄p = ΔW_p,
+  solved in closed form: Δε̄p = g(1 − kσ_Y,n/‖t^d_tr‖)/(1 + gkH/‖t^d_tr‖), g = kS/(α‖t^d_tr‖)
+- (C1) 3D calibration, any deviatoric state at von Mises yield: ψ0 = 10π σ_Y² ∫ω²ξ⁴dξ / m², which is
+  25σ_Y²/(8πδ⁵) for ω = 1
+- (C2) plane stress, calibrated in in-plane uniaxial stress: ψ0 = 2πh σ_Y² ∫ω²ξ³dξ / m² (2σ_Y²/(πhδ⁴) for ω = 1)
+- (C3) plane strain, calibrated in in-plane pure shear: ψ0 = (8π/3)h σ_Y² ∫ω²ξ³dξ / m² (8σ_Y²/(3πhδ⁴) for ω = 1)
+
+In (C1)–(C3) m is the weighted volume of a full family (the integral), as in Peridigm. The stored energy is
+W = α_v θ²/(2n) + (α_d/2m) Σ ω (e^d − e^dp)² V; the history output `dissipation` is W_p per unit volume
+and `equivalent_plastic_strain` is ε̄p.)",
+      .restrictions = R"(- Plasticity is deviatoric only: a pure volumetric strain never yields (no pressure dependence, no
+  tension cut-off).
+- The yield calibration assumes a full family: points within δ of a free surface have a truncated family
+  and yield at a different load (no surface correction is applied).
+- In 2D the deviatoric norm sees the in-plane deviator only; the constant is exact for in-plane uniaxial
+  stress (plane stress) or in-plane pure shear (plane strain), not for every stress state.
+- One more pass over the bonds per step than lps (the return map), and one more after the force (the commit);
+  8 bytes of plastic extension and 4 bytes of partner-bond index per bond.
+- Damage, when given, uses the total stretch (the plastic extension is not subtracted), as in Peridigm;
+  m is not updated when bonds break.)",
+      .further_references = {"Mitchell, A nonlocal, ordinary, state-based plasticity model for peridynamics, SAND2011-3166 (2011)"},
+      .example = R"(materials:
+  aluminium:
+    model: lps_plastic
+    density: 2.7 g/cm^3
+    youngs_modulus: 69 GPa
+    poisson_ratio: 0.33
+    yield_stress: 276 MPa
+    hardening_modulus: 500 MPa
+    damage: {critical_stretch: 0.1})",
+  };
+}
+
+ModelDoc lps_viscoelastic_doc() {
+  return {
+      .summary = R"(Mitchell's nonlocal standard linear solid: the lps model whose deviatoric response is an equilibrium
+spring in parallel with a Maxwell branch (a spring and a dashpot) that carries the fraction λ_i of the
+deviatoric stiffness and relaxes with time constant τ_b. Every bond keeps a back extension; it is advanced by
+the exact integral of its evolution equation for an extension that varies linearly over the step, so the
+viscous part never limits the time step. The bulk response stays elastic.)",
+      .equations = R"(Notation as on the lps page; e^b the back extension of a bond (0 at t = 0), λ_i the relaxing fraction,
+τ_b the relaxation time, ε = exp(−Δt/τ_b), β = 1 − (τ_b/Δt)(1 − ε).
+
+- (V1) t = (ω/m)[α_v θ ξ + α_d ((1 − λ_i) e^d + λ_i (e^d − e^b))], e^d = e − θξ/n
+- (V2) ė^b = (e^d − e^b)/τ_b
+- (V3) e^b_{n+1} = ε e^b_n + (1 − ε) e^d_n + β (e^d_{n+1} − e^d_n), exact for e^d linear in time over the step
+- (V4) dissipation D = Σ (λ_i α_d ω/(m τ_b)) ∫ (e^d − e^b)² dt V, integrated exactly for the same e^d(t)
+- (V5) stored energy W = α_v θ²/(2n) + (α_d/2m) Σ ω [(1 − λ_i)(e^d)² + λ_i (e^d − e^b)²] V
+
+The instantaneous (glassy) deviatoric stiffness is α_d and the relaxed one (1 − λ_i)α_d: under a held
+deviatoric extension a bond force relaxes as (1 − λ_i) + λ_i exp(−t/τ_b). The history output `dissipation`
+is D per unit volume.)",
+      .restrictions = R"(- One relaxation time: a Prony series of several branches is not available.
+- The bulk response is elastic (no volumetric relaxation) and the model has no temperature dependence.
+- The time step limit is that of lps (the glassy stiffness); the viscous part is unconditionally stable.
+- 16 bytes of history (back extension and last deviatoric extension) and 4 bytes of partner-bond index per
+  bond, and one more pass over the bonds after the force (the commit).
+- Damage, when given, uses the total stretch; m is not updated when bonds break.)",
+      .further_references = {"Mitchell, A non-local, ordinary-state-based viscoelasticity model for peridynamics, SAND2011-8064 (2011)"},
+      .example = R"(materials:
+  polymer:
+    model: lps_viscoelastic
+    density: 1.2 g/cm^3
+    youngs_modulus: 3 GPa
+    poisson_ratio: 0.35
+    relaxing_fraction: 0.6
+    relaxation_time: 20 us)",
+  };
+}
+
 }  // namespace
 
 const std::vector<ModelInfo>& material_models() {
@@ -104,6 +191,21 @@ const std::vector<ModelInfo>& material_models() {
        "Silling & Askari, Comput. Struct. 83 (2005) 1526-1535", true, {}, pmb_doc()},
       {"lps", ModelKind::lps, "linear peridynamic solid: ordinary state-based, any Poisson ratio",
        "Silling, Epton, Weckner, Xu & Askari, J. Elasticity 88 (2007) 151-184", false, {}, lps_doc()},
+      {"lps_plastic", ModelKind::lps_plastic, "elastic-plastic ordinary state-based solid (Mitchell), linear hardening",
+       "Mitchell, SAND2011-3166 (2011); papers/001", false,
+       {{.key = "yield_stress", .unit = Unit::pressure, .range = positive,
+         .description = "uniaxial yield stress σ_y (Pa)", .required = true},
+        {.key = "hardening_modulus", .unit = Unit::pressure, .default_yaml = "0", .range = non_negative,
+         .description = "linear hardening H (Pa): σ_Y = σ_y + H ε̄p; 0 = perfectly plastic"}},
+       lps_plastic_doc()},
+      {"lps_viscoelastic", ModelKind::lps_viscoelastic,
+       "viscoelastic ordinary state-based solid (Mitchell standard linear solid)", "Mitchell, SAND2011-8064 (2011); papers/003",
+       false,
+       {{.key = "relaxing_fraction", .range = {0, 1, false, false},
+         .description = "λ_i: share of the deviatoric stiffness that relaxes (Peridigm 'lambda_i')", .required = true},
+        {.key = "relaxation_time", .unit = Unit::time, .range = positive,
+         .description = "τ_b (s): relaxation time of the back extension (Peridigm 'tau b')", .required = true}},
+       lps_viscoelastic_doc()},
   };
   return models;
 }

@@ -1,5 +1,7 @@
 #include "peridot/neighbor/neighborhood.hpp"
 
+#include "peridot/core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -129,6 +131,23 @@ BondList build_neighborhood(const Discretization& disc, const NeighborhoodOption
   }
   bonds.broken.assign(bonds.neighbors.size(), 0);
   return bonds;
+}
+
+void build_reverse_bonds(BondList& bonds) {
+  const std::size_t n = bonds.offsets.size() - 1;
+  PERIDOT_REQUIRE(bonds.num_bonds() <= UINT32_MAX, "more than 2^32 bonds: reverse bond indices need 64 bits");
+  bonds.reverse.resize(bonds.num_bonds());
+  const std::uint32_t* neighbors = bonds.neighbors.data();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      const std::uint32_t j = neighbors[b];
+      const std::uint32_t* first = neighbors + bonds.offsets[j];
+      const std::uint32_t* last = neighbors + bonds.offsets[j + 1];
+      const std::uint32_t* found = std::lower_bound(first, last, static_cast<std::uint32_t>(i));
+      PERIDOT_REQUIRE(found != last && *found == i, "bond families are not symmetric");
+      bonds.reverse[b] = static_cast<std::uint32_t>(bonds.offsets[j] + (found - first));
+    }
 }
 
 }  // namespace peridot

@@ -19,6 +19,10 @@ struct NeighborhoodOptions {
 
 BondList build_neighborhood(const Discretization& disc, const NeighborhoodOptions& options);
 
+/// Fills bonds.reverse: for bond i → j the index of bond j → i (families are symmetric and sorted, so a
+/// binary search in j's list finds it). 4 bytes per bond; only models with per-bond history need it.
+void build_reverse_bonds(BondList& bonds);
+
 /// Fraction of a neighbour cell of half-width r at distance ξ inside a horizon δ: a linear ramp, 1 up to
 /// δ − r, ½ on the horizon, 0 at δ + r. r = 0 means no correction.
 inline double partial_volume_factor(double xi, double horizon, double r) {

@@ -44,12 +44,14 @@ std::vector<char*> name_pointers(std::vector<std::string>& names) {
   return out;
 }
 
-std::vector<std::string> nodal_variable_names(int dimension) {
+std::vector<std::string> nodal_variable_names(int dimension, bool inelastic_fields) {
   static const char* const axis[] = {"_x", "_y", "_z"};
   std::vector<std::string> names;
   for (const char* field : {"displacement", "velocity", "force_density"})
     for (int d = 0; d < dimension; ++d) names.push_back(std::string(field) + axis[d]);
   for (const char* scalar : {"damage", "dilatation", "weighted_volume", "volume"}) names.emplace_back(scalar);
+  if (inelastic_fields)
+    for (const char* scalar : {"equivalent_plastic_strain", "dissipation"}) names.emplace_back(scalar);
   return names;
 }
 
@@ -66,7 +68,7 @@ void ExodusWriter::check(int status, const char* what) const {
 
 ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
                            const std::vector<NodeSetOutput>& node_sets, const std::string& title,
-                           double thickness)
+                           double thickness, bool inelastic_fields)
     : path_(path), dimension_(disc.dimension), num_points_(disc.num_points()) {
   const std::size_t n = num_points_;
   PERIDOT_REQUIRE(dimension_ == 2 || dimension_ == 3, "Exodus output needs dimension 2 or 3");
@@ -129,7 +131,8 @@ ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
                     "disc.input_id has duplicates");
   }
 
-  variable_names_ = nodal_variable_names(dimension_);
+  inelastic_fields_ = inelastic_fields;
+  variable_names_ = nodal_variable_names(dimension_, inelastic_fields);
   volume_.assign(disc.volume.begin(), disc.volume.end());
   buffer_.assign(n, 0.0);
 
@@ -252,6 +255,7 @@ ExodusWriter::ExodusWriter(ExodusWriter&& other) noexcept
       dimension_(other.dimension_),
       num_points_(other.num_points_),
       frames_(other.frames_),
+      inelastic_fields_(other.inelastic_fields_),
       element_points_(std::move(other.element_points_)),
       variable_names_(std::move(other.variable_names_)),
       volume_(std::move(other.volume_)),
@@ -265,6 +269,7 @@ ExodusWriter& ExodusWriter::operator=(ExodusWriter&& other) noexcept {
     dimension_ = other.dimension_;
     num_points_ = other.num_points_;
     frames_ = other.frames_;
+    inelastic_fields_ = other.inelastic_fields_;
     element_points_ = std::move(other.element_points_);
     variable_names_ = std::move(other.variable_names_);
     volume_ = std::move(other.volume_);
@@ -331,6 +336,11 @@ void ExodusWriter::write_frame(double time, const State& state) {
     check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, values), "ex_put_var");
   }
   check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, volume_.data()), "ex_put_var");
+  if (inelastic_fields_)
+    for (const std::vector<double>* field : {&state.history.plastic_strain, &state.history.dissipation}) {
+      PERIDOT_REQUIRE(field->size() == n, "state history field does not match the discretization");
+      check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, field->data()), "ex_put_var");
+    }
   PERIDOT_ASSERT(var == static_cast<int>(variable_names_.size()) + 1);
 
   check(ex_put_time(exoid_, step, &time), "ex_put_time");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "peridot/core/error.hpp"
 #include "peridot/damage/critical_stretch.hpp"
 #include "peridot/solvers/bond_loop.hpp"
 
@@ -17,15 +18,36 @@ bool ModelContext::any_damage() const {
   return std::any_of(params.begin(), params.end(), [](const MaterialParams& p) { return std::isfinite(p.critical_stretch); });
 }
 
+int ModelContext::bond_history_arrays() const {
+  int arrays = 0;
+  for (const MaterialParams& p : params)
+    arrays = std::max(arrays, with_model(p.model, [](auto m) { return decltype(m)::bond_history_arrays; }));
+  return arrays;
+}
+
+KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& theta, const MaterialHistory* history) {
+  KernelFields s;
+  s.theta = theta.data();
+  s.inverse_m = ctx.inverse_weighted_volume.data();
+  if (history) {
+    s.yield_scale = history->yield_scale.data();
+    s.bond0 = history->bond[0].empty() ? nullptr : history->bond[0].data();
+    s.bond1 = history->bond[1].empty() ? nullptr : history->bond[1].data();
+  }
+  PERIDOT_REQUIRE(ctx.bond_history_arrays() == 0 || (s.bond0 && s.yield_scale),
+                  "an inelastic model needs the material history");
+  return s;
+}
+
 using namespace bond_loop;
 
 namespace {
 
 /// t_ji for a neighbour in another block (interfaces only): dispatch on the neighbour's model.
-inline double other_block_force_scalar(const MaterialParams& pj, double e, double xi, double theta_j,
-                                       double inverse_m_j) {
+inline double other_block_force_scalar(const MaterialParams& pj, const KernelFields& s, std::size_t j,
+                                       std::uint64_t reverse_bond, double e, double xi) {
   const double omega = influence(pj.influence, xi, pj.horizon);
-  return with_model(pj.model, [&](auto model) { return model.force_scalar(pj, e, xi, omega, theta_j, inverse_m_j); });
+  return with_model(pj.model, [&](auto model) { return model.force_scalar(pj, s, j, reverse_bond, e, xi, omega); });
 }
 
 /// Critical stretch of a bond: the smaller of its two blocks' (j outside range = another block).
@@ -83,9 +105,24 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
   });
 }
 
+void prepare_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                     MaterialHistory& history) {
+  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, BlockRange range) {
+    if constexpr (decltype(model)::bond_history_arrays > 0) model.prepare(ctx, u, theta, history, p, range);
+  });
+}
+
+void commit_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                    MaterialHistory& history, double dt) {
+  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, BlockRange range) {
+    if constexpr (decltype(model)::bond_history_arrays > 0) model.commit(ctx, u, theta, history, p, range, dt);
+  });
+}
+
 void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                            VectorField& f, bool fail_bonds) {
+                            VectorField& f, bool fail_bonds, const MaterialHistory* history) {
   const BondFailure failure(ctx);
+  const KernelFields fields = kernel_fields(ctx, theta, history);
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
   double* fp = f.data();
@@ -93,15 +130,16 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
   const auto& blocks = ctx.disc->block;
   const double* volume = ctx.disc->volume.data();
   const std::uint32_t* neighbors = bonds.neighbors.data();
+  const std::uint32_t* reverse = bonds.reverse.data();
   std::uint8_t* broken = ctx.bonds->broken.data();
-  const double* theta_p = theta.data();
-  const double* inverse_m = ctx.inverse_weighted_volume.data();
+  const bool any_history = ctx.bond_history_arrays() > 0;
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
+    // The partner's bond j → i, for models that keep per-bond history; never read by the others.
+    constexpr bool reads_partner_bond = decltype(model)::bond_history_arrays > 0;
     const bool partial_volume = ctx.partial_volume_radius > 0;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
-      const double theta_i = theta_p[i], inverse_m_i = inverse_m[i];
       double x_i[3], u_i[3];  // position and displacement of point i
       for (int d = 0; d < 3; ++d) x_i[d] = x[3 * i + d], u_i[d] = up[3 * i + d];
       // Neighbours are sorted, and blocks are contiguous index ranges, so the bonds to this block form
@@ -126,8 +164,9 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
         }
         const double xi = std::sqrt(xi2), length = std::sqrt(y2), e = length - xi;
         const double omega = influence(p.influence, xi, p.horizon);
-        const double t = model.force_scalar(p, e, xi, omega, theta_i, inverse_m_i) +
-                         model.force_scalar(p, e, xi, omega, theta_p[j], inverse_m[j]);
+        const std::uint64_t partner_bond = reads_partner_bond ? reverse[b] : 0;
+        const double t = model.force_scalar(p, fields, i, b, e, xi, omega) +
+                         model.force_scalar(p, fields, j, partner_bond, e, xi, omega);
         double v = volume[j];
         if (partial_volume) v *= partial_volume_factor(xi, p.horizon, ctx.partial_volume_radius);
         if (fail_bonds && !broken[b] && failure.fails(i, j, e, xi, p.critical_stretch)) broken[b] = 1;
@@ -146,8 +185,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
           return;
         }
         const double omega = influence(p.influence, g.xi, p.horizon);
-        const double t = model.force_scalar(p, g.e, g.xi, omega, theta_i, inverse_m_i) +
-                         other_block_force_scalar(ctx.params[blocks[j]], g.e, g.xi, theta_p[j], inverse_m[j]);
+        const double t = model.force_scalar(p, fields, i, b, g.e, g.xi, omega) +
+                         other_block_force_scalar(ctx.params[blocks[j]], fields, j, any_history ? reverse[b] : 0, g.e, g.xi);
         const double scale = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
         fx += scale * g.y[0];
         fy += scale * g.y[1];
@@ -163,8 +202,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
 }
 
 void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                                   std::vector<double>& W) {
-  const std::vector<double>& inverse_m = ctx.inverse_weighted_volume;
+                                   std::vector<double>& W, const MaterialHistory* history) {
+  const KernelFields fields = kernel_fields(ctx, theta, history);
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
   const BondList& bonds = *ctx.bonds;
@@ -173,13 +212,13 @@ void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
-      double sum = model.point_energy(p, theta[i]);
+      double sum = model.point_energy(p, fields, i);
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
-        sum += model.bond_energy(p, g.e, g.xi, omega, theta[i], inverse_m[i]) * neighbor_volume(ctx, i, j, g.xi);
+        sum += model.bond_energy(p, fields, i, b, g.e, g.xi, omega) * neighbor_volume(ctx, i, j, g.xi);
       }
       W[i] = sum;
     }

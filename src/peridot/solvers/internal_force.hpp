@@ -25,7 +25,12 @@ struct ModelContext {
 
   bool any_dilatation() const;
   bool any_damage() const;
+  /// The most per-bond history arrays any block's model needs (0: no inelastic model).
+  int bond_history_arrays() const;
 };
+
+/// The fields the kernels read, from θ and (for inelastic models) the history.
+KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& theta, const MaterialHistory* history);
 
 /// m_i = Σ_j ω ξ² V_j over all bonds (undamaged reference), for every point (m⁵; 2D m⁴·h).
 void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m);
@@ -35,15 +40,26 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m);
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta,
                         bool fail_bonds = false);
 
-/// Internal force density f (N/m³). θ must be current where a model uses it.
+/// Inelastic models, before the force: this step's return map from the current u and θ (history
+/// unchanged; may run any number of times).
+void prepare_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                     MaterialHistory& history);
+
+/// Internal force density f (N/m³). θ must be current where a model uses it, and, for inelastic models,
+/// prepare_history must have run on the same u (history is required then).
 /// With fail_bonds, bonds that fail now are marked broken first (when no dilatation pass ran this step).
 void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                            VectorField& f, bool fail_bonds = false);
+                            VectorField& f, bool fail_bonds = false, const MaterialHistory* history = nullptr);
 
-/// Strain energy density W_i (J/m³) of every point; Σ W_i V_i is the total strain energy, and
-/// f_i V_i = −∂(Σ W V)/∂u_i.
+/// Inelastic models, after the force of a step: the history advances to the current u over a step Δt
+/// (the Δt of set_time_step).
+void commit_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                    MaterialHistory& history, double dt);
+
+/// Stored energy density W_i (J/m³) of every point, with the committed history; Σ W_i V_i is the total
+/// strain energy, and, for the elastic models and an elastic step, f_i V_i = −∂(Σ W V)/∂u_i.
 void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                                   std::vector<double>& W);
+                                   std::vector<double>& W, const MaterialHistory* history = nullptr);
 
 /// Silling–Askari stable time step min_i √(2ρ_i / Σ_j V_j c/ξ_ij) (s), before any safety factor.
 double stable_time_step(const ModelContext& ctx);

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "peridot/deck/deck.hpp"
+#include "peridot/materials/registry.hpp"
 #include "peridot/output/csv_writer.hpp"
 #include "peridot/output/exodus_writer.hpp"
 
@@ -21,7 +22,8 @@ namespace fs = std::filesystem;
 const std::vector<std::string>& point_field_names() {
   static const std::vector<std::string> names = {
       "displacement_x", "displacement_y", "displacement_z", "velocity_x", "velocity_y", "velocity_z",
-      "force_density_x", "force_density_y", "force_density_z", "damage", "dilatation", "weighted_volume"};
+      "force_density_x", "force_density_y", "force_density_z", "damage", "dilatation", "weighted_volume",
+      "equivalent_plastic_strain", "dissipation"};
   return names;
 }
 
@@ -33,6 +35,8 @@ double point_field(const State& state, const std::string& field, std::size_t i) 
   if (field == "damage") return state.damage[i];
   if (field == "dilatation") return state.dilatation[i];
   if (field == "weighted_volume") return state.weighted_volume[i];
+  if (field == "equivalent_plastic_strain") return state.history.plastic_strain[i];
+  if (field == "dissipation") return state.history.dissipation[i];
   throw std::out_of_range("unknown point field '" + field + "'");
 }
 
@@ -48,7 +52,7 @@ std::string describe_setup(const Simulation& sim) {
     const BlockRange r = sim.model().ranges[b];
     const MaterialParams& p = sim.model().params[b];
     out << fmt::format("  block {:<10} {} points, model {}, horizon {:.6g} m, critical stretch {}\n", disc.block_names[b],
-                       r.end - r.begin, p.model == ModelKind::pmb ? "pmb" : "lps", p.horizon,
+                       r.end - r.begin, model_info(p.model).name, p.horizon,
                        std::isfinite(p.critical_stretch) ? fmt::format("{:.6g}", p.critical_stretch) : "none");
   }
   out << fmt::format("bonds            {} directed ({:.1f} per point)\n", sim.bonds().num_bonds(),
@@ -96,7 +100,7 @@ class History {
   History(const fs::path& path, Simulation& sim) : sim_(sim) {
     const Problem& problem = sim.problem();
     std::vector<std::string> columns = {"time", "step", "kinetic_energy", "strain_energy", "external_work",
-                                        "momentum_x", "momentum_y", "momentum_z", "max_damage"};
+                                        "momentum_x", "momentum_y", "momentum_z", "max_damage", "dissipated_energy"};
     for (const std::string& name : problem.output.reaction_sets) {
       for (const NodeSet& set : sim.node_sets())
         if (set.name == name) reaction_sets_.push_back(&set);
@@ -112,7 +116,8 @@ class History {
     const Totals t = sim_.totals();
     const State& s = sim_.state();
     std::vector<double> row = {s.time, static_cast<double>(s.step), t.kinetic_energy, t.strain_energy,
-                               sim_.external_work(), t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage};
+                               sim_.external_work(), t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage,
+                               t.dissipated_energy};
     for (const NodeSet* set : reaction_sets_) {
       Vec3 r = sim_.reaction(*set);
       row.insert(row.end(), {r.x, r.y, r.z});
@@ -189,7 +194,8 @@ void run_problem(const Problem& problem, const RunOptions& options) {
     std::vector<NodeSetOutput> sets;
     for (const NodeSet& set : sim.node_sets()) sets.push_back({set.name, set.points});
     exodus = std::make_unique<ExodusWriter>((dir / output.exodus_file).string(), sim.discretization(), sets,
-                                            "peridot: " + problem.deck_path, problem.thickness);
+                                            "peridot: " + problem.deck_path, problem.thickness,
+                                            sim.model().bond_history_arrays() > 0);
   }
   std::unique_ptr<History> history;
   if (output.history_every > 0) history = std::make_unique<History>(dir / output.history_file, sim);

@@ -34,8 +34,13 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
   }
   any_dilatation_ = model_.any_dilatation();
   any_damage_ = model_.any_damage();
+  history_arrays_ = model_.bond_history_arrays();
 
   state_.resize(disc_.num_points());
+  if (history_arrays_ > 0) {
+    build_reverse_bonds(bonds_);
+    state_.size_history(bonds_.num_bonds(), history_arrays_);
+  }
   compute_weighted_volume(model_, state_.weighted_volume);
   model_.inverse_weighted_volume.resize(disc_.num_points());
   for (std::size_t i = 0; i < disc_.num_points(); ++i) {
@@ -61,14 +66,21 @@ void Simulation::initialize() {
   state_.step = 0;
   loads_->apply_initial_conditions(state_);
   loads_->update_body_force(0.0, state_.body_force);
+  // No time passes at t = 0: the history starts from the initial displacement with Δt = 0 (an initial
+  // displacement beyond yield flows plastically at once; a viscous back extension starts at 0).
+  set_time_step(model_.params, 0.0);
   compute_forces();
+  if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, 0.0);
+  set_time_step(model_.params, dt_);
 }
 
 void Simulation::compute_forces() {
   // Bond failure is checked in the first pass that computes every bond's stretch (on u^{n+1}, before any
   // force uses the bond).
   if (any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation, any_damage_);
-  compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && !any_dilatation_);
+  if (history_arrays_ > 0) prepare_history(model_, state_.u, state_.dilatation, state_.history);
+  compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && !any_dilatation_,
+                         &state_.history);
 }
 
 void Simulation::kick(double half_dt) {
@@ -124,6 +136,7 @@ void Simulation::step() {
   state_.step += 1;
   loads_->update_body_force(state_.time, state_.body_force);
   compute_forces();
+  if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
   external_work_ += work_increment();
 
   kick(0.5 * dt);
@@ -163,8 +176,10 @@ Totals Simulation::totals() {
   totals.kinetic_energy = deterministic_sum(n, [&](std::size_t i) {
     return 0.5 * density(i) * disc_.volume[i] * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
   });
-  compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_);
+  compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_, &state_.history);
   totals.strain_energy = deterministic_sum(n, [&](std::size_t i) { return energy_density_[i] * disc_.volume[i]; });
+  const double* dissipation = state_.history.dissipation.data();
+  totals.dissipated_energy = deterministic_sum(n, [&](std::size_t i) { return dissipation[i] * disc_.volume[i]; });
   for (int d = 0; d < 3; ++d)
     totals.momentum[d] = deterministic_sum(n, [&](std::size_t i) { return density(i) * disc_.volume[i] * v[3 * i + d]; });
   compute_damage(model_, state_.damage);
@@ -181,8 +196,11 @@ Vec3 Simulation::reaction(const NodeSet& set) const {
 
 std::size_t Simulation::memory_bytes() const {
   const std::size_t n = disc_.num_points(), nnz = bonds_.num_bonds();
-  const std::size_t per_point = sizeof(double) * (3 /*x*/ + 1 /*V*/ + 3 * 4 /*u v f b*/ + 3 /*φ θ m*/) + 4 + 4;
-  return n * per_point + (n + 1) * sizeof(std::uint64_t) + nnz * (sizeof(std::uint32_t) + sizeof(std::uint8_t));
+  const std::size_t per_point =
+      sizeof(double) * (3 /*x*/ + 1 /*V*/ + 3 * 4 /*u v f b*/ + 3 /*φ θ m*/ + 4 /*ε̄p, D, r, Δε̄p*/) + 4 + 4;
+  const std::size_t per_bond = sizeof(std::uint32_t) + sizeof(std::uint8_t) +
+                               (history_arrays_ > 0 ? sizeof(std::uint32_t) + history_arrays_ * sizeof(double) : 0);
+  return n * per_point + (n + 1) * sizeof(std::uint64_t) + nnz * per_bond;
 }
 
 }  // namespace peridot

@@ -2,7 +2,8 @@
 // A problem set up and ready to integrate: points, bonds, per-block materials, loads and the state.
 // The explicit solver is velocity Verlet (papers/003, "Temporal discretization"):
 //   v^{n+½} = v^n + (Δt/2) a^n,  u^{n+1} = u^n + Δt v^{n+½},  v^{n+1} = v^{n+½} + (Δt/2) a^{n+1},
-// with bond failure evaluated on u^{n+1} before the force, as Peridigm does.
+// with bond failure evaluated on u^{n+1} before the force, as Peridigm does. Inelastic models solve their
+// return map on u^{n+1} before the force and commit their history after it, once per step.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -22,7 +23,8 @@ namespace peridot {
 /// Global quantities of one instant; sums taken in a fixed order, so identical for any thread count.
 struct Totals {
   double kinetic_energy = 0;  ///< J
-  double strain_energy = 0;   ///< J
+  double strain_energy = 0;   ///< J, stored (elastic) energy
+  double dissipated_energy = 0;  ///< J, plastic work or viscous dissipation since t = 0
   Vec3 momentum;              ///< kg·m/s
   double max_damage = 0;
 };
@@ -77,6 +79,7 @@ class Simulation {
   std::int64_t total_steps_ = 0;
   double external_work_ = 0;
   bool any_dilatation_ = false, any_damage_ = false;
+  int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
 };
 
 /// Sum of term(i) over i < n in chunks of fixed size, chunk results added in order: bitwise the same for

@@ -50,7 +50,21 @@ struct BondList {
   std::vector<std::uint64_t> offsets;     ///< size N + 1
   std::vector<std::uint32_t> neighbors;   ///< size nnz
   std::vector<std::uint8_t> broken;       ///< 1 once the bond has failed (irreversible)
+  /// For bond i → j, the index of bond j → i; built only when a model reads its partner's bond history.
+  std::vector<std::uint32_t> reverse;
   std::size_t num_bonds() const { return neighbors.size(); }
+};
+
+/// The history of the inelastic models: per-bond arrays parallel to BondList, per-point arrays, and the
+/// scratch of the current step's return map. Each model says what its arrays hold (materials/lps_plastic.hpp,
+/// lps_viscoelastic.hpp); the bond arrays are empty when no block needs them, the point arrays always exist.
+struct MaterialHistory {
+  std::vector<double> bond[2];                ///< lps_plastic: e^dp (bond[1] empty); lps_viscoelastic: e^b, e^d of the last step
+  std::vector<double> plastic_strain;         ///< ε̄p, equivalent plastic strain (-)
+  std::vector<double> dissipation;            ///< dissipated energy density since t = 0 (J/m³)
+  std::vector<double> yield_scale;            ///< this step: t^d = r t^d_trial, r ∈ (0, 1] (lps_plastic)
+  std::vector<double> plastic_strain_increment;  ///< this step: Δε̄p (lps_plastic)
+  bool has_bond_history() const { return !bond[0].empty(); }
 };
 
 /// What changes during a run.
@@ -64,7 +78,11 @@ struct State {
   std::vector<double> damage;           ///< φ, volume-weighted fraction of broken bonds (-)
   std::vector<double> dilatation;       ///< θ (-) (LPS; 2D: in-plane θ₂)
   std::vector<double> weighted_volume;  ///< m (m⁵; 2D m⁴·h) (LPS)
+  MaterialHistory history;
+  /// Sizes the point fields for n points (zeros); the bond history stays empty until size_history.
   void resize(std::size_t n);
+  /// Allocates `arrays` (1 or 2) per-bond history arrays of nnz zeros.
+  void size_history(std::size_t nnz, int arrays);
 };
 
 }  // namespace peridot

@@ -1,0 +1,74 @@
+#pragma once
+// Elastic-plastic ordinary state-based solid (Mitchell 2011, papers/001; papers/003 "Elastic-plastic
+// model"; reference/algorithms.md §8). The LPS of lps.hpp with the deviatoric extension split additively,
+// e^d = e^de + e^dp, the plastic part e^dp a history value of every bond:
+//   (P1) t = (ω/m)[α_v θ ξ + α_d (e^d − e^dp)],  e^d = e − θξ/n          (n, α_v, α_d as in lps.hpp)
+//   (P2) yield function f(t^d) = ‖t^d‖²/2 − ψ0(ε̄p),  ‖t^d‖² = Σ (t^d)² V over the point's intact bonds
+//   (P3) trial state t^d_tr = α ω (e^d_{n+1} − e^dp_n), α = α_d/m; elastic when ‖t^d_tr‖ ≤ √(2ψ0)
+//   (P4) otherwise the radial return t^d_{n+1} = r t^d_tr, r = √(2ψ0)/‖t^d_tr‖, and
+//        e^dp_{n+1} = e^dp_n + (1 − r)(e^d_{n+1} − e^dp_n).
+// For ω = 1 (P4) is exactly Mitchell's backward-Euler step e^dp_{n+1} = e^dp_n + Δλ t^d_{n+1},
+// Δλ = (‖t^d_tr‖/√(2ψ0) − 1)/α. For another ω it is the backward-Euler step of the flow rule
+// ė^dp = λ t^d/ω, which keeps the return radial (so exact in one step) and dissipates Σ λ (t^d)²/ω V ≥ 0.
+//
+// Calibration (reference/README.md): ψ0 = ‖t^d‖²/2 of a point with a full family at von Mises yield,
+//   (C1) 3D, any deviatoric strain:        ψ0 = 10π σ_Y² M₄/m²,     M₄ = ∫₀^δ ω² ξ⁴ dξ, m = 4π ∫₀^δ ω ξ⁴ dξ
+//        (ω = 1: 25σ_Y²/(8πδ⁵))
+//   (C2) plane stress, in-plane uniaxial: ψ0 = 2π h σ_Y² M₃/m²,     M₃ = ∫₀^δ ω² ξ³ dξ, m = 2πh ∫₀^δ ω ξ³ dξ
+//        (ω = 1: 2σ_Y²/(πhδ⁴))
+//   (C3) plane strain, in-plane pure shear: ψ0 = (8π/3) h σ_Y² M₃/m² (ω = 1: 8σ_Y²/(3πhδ⁴)).
+// The 2D deviatoric norm sees only the in-plane deviator, so one 2D constant cannot match von Mises for
+// every stress state; (C2) and (C3) are the states that stay exact. We write √(2ψ0) = k σ_Y.
+//
+// Hardening: linear isotropic, σ_Y = σ_y + H ε̄p, with the equivalent plastic strain defined by the
+// plastic work, σ_Y Δε̄p = ΔW_p = Σ t^d_{n+1} Δe^dp V = r(1 − r) S/α, S = Σ (t^d_tr)²/ω V, so that a
+// homogeneous deformation gives the classical ε̄p. Backward Euler (r uses σ_Y at n+1) is linear in Δε̄p:
+//   (P5) Δε̄p = g(1 − kσ_Y,n/‖t^d_tr‖) / (1 + gkH/‖t^d_tr‖),  g = kS/(α‖t^d_tr‖);
+//        σ_Y,n+1 = σ_Y,n + HΔε̄p,  r = kσ_Y,n+1/‖t^d_tr‖.
+// History: MaterialHistory::bond[0] = e^dp per bond; plastic_strain = ε̄p and dissipation = W_p per point.
+// Stored (free) energy: W = α_v θ²/(2n) + (α_d/2m) Σ ω (e^d − e^dp)² V.
+#include <cstdint>
+#include <vector>
+
+#include "peridot/geometry/discretize.hpp"
+#include "peridot/materials/material.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+struct ModelContext;
+
+struct LpsPlastic {
+  static constexpr bool uses_dilatation = true;
+  static constexpr int bond_history_arrays = 1;
+
+  static double force_scalar(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
+                             double e, double xi, double omega) {
+    const double theta = s.theta[i];
+    const double ed = e - theta * xi / p.dilatation_factor;
+    return omega * s.inverse_m[i] *
+           (p.alpha_volumetric * theta * xi + s.yield_scale[i] * p.alpha_deviatoric * (ed - s.bond0[b]));
+  }
+  static double bond_energy(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
+                            double e, double xi, double omega) {
+    const double elastic = e - s.theta[i] * xi / p.dilatation_factor - s.bond0[b];
+    return 0.5 * p.alpha_deviatoric * s.inverse_m[i] * omega * elastic * elastic;
+  }
+  static double point_energy(const MaterialParams& p, const KernelFields& s, std::size_t i) {
+    return p.alpha_volumetric * s.theta[i] * s.theta[i] / (2 * p.dilatation_factor);
+  }
+
+  /// The return map of every point of the block for the current u and θ: yield_scale r and Δε̄p (P3–P5).
+  /// Reads the history, writes only this step's scratch, so it may run any number of times.
+  static void prepare(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                      MaterialHistory& history, const MaterialParams& p, BlockRange range);
+  /// Makes the step final: e^dp, ε̄p and W_p advance with the scratch of prepare, which is reset.
+  static void commit(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                     MaterialHistory& history, const MaterialParams& p, BlockRange range, double dt);
+};
+
+/// k = √(2ψ0)/σ_Y of (C1)–(C3) for this influence function, horizon and plane.
+double plastic_yield_norm_factor(InfluenceKind influence, double horizon, int dimension, PlaneKind plane,
+                                 double thickness);
+
+}  // namespace peridot
