@@ -19,6 +19,8 @@ struct BlockSetup {
   double density = 7800;
   double jitter = 0;
   bool partial_volume = false;
+  double yield_stress = 250e6, hardening_modulus = 0;       ///< lps_plastic
+  double relaxing_fraction = 0.5, relaxation_time = 1e-5;   ///< lps_viscoelastic
 };
 
 /// A box of lattice points [0, n·Δx] with one material, no loads, a handful of steps.
@@ -44,6 +46,10 @@ inline Problem box_problem(const BlockSetup& s) {
     G = 3 * K * (1 - 2 * nu) / (2 * (1 + nu));
   }
   m.elastic = {K, G, 9 * K * G / (3 * K + G), (3 * K - 2 * G) / (2 * (3 * K + G))};
+  m.yield_stress = s.yield_stress;
+  m.hardening_modulus = s.hardening_modulus;
+  m.relaxing_fraction = s.relaxing_fraction;
+  m.relaxation_time = s.relaxation_time;
   p.materials.push_back(m);
 
   BodySpec b;

@@ -1,8 +1,11 @@
 // Analytic invariants every model must satisfy (STYLE.md): zero force under rigid motion, Σ f V = 0 and
 // zero net moment, and f = −∂W/∂u by finite differences of the total strain energy. Run for PMB and
-// LPS, in 3D and in 2D (plane stress and plane strain), for the three influence functions.
+// LPS, in 3D and in 2D (plane stress and plane strain), for the three influence functions, and for the
+// inelastic models with a random history: f = −∂W/∂u on the elastic branch (lps_plastic below yield,
+// lps_viscoelastic with no time elapsed), momentum also while every point flows plastically.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 
@@ -23,8 +26,9 @@ struct Case {
   InfluenceKind influence;
 };
 
-BlockSetup setup_for(const Case& c) {
+BlockSetup setup_for(const Case& c, double yield_stress = 1e12) {
   BlockSetup s;
+  s.yield_stress = yield_stress;
   s.dimension = c.dimension;
   s.plane = c.plane;
   s.model = c.model;
@@ -40,14 +44,15 @@ struct Forces {
   double energy = 0;
 };
 
-// Internal force (times volume) and total strain energy for displacement u.
+// Internal force (times volume) and total strain energy for displacement u (the history is not committed).
 Forces evaluate(Simulation& sim, const VectorField& u) {
   const ModelContext& ctx = sim.model();
   State& s = sim.state();
   compute_dilatation(ctx, u, s.dilatation);
-  compute_internal_force(ctx, u, s.dilatation, s.force);
+  prepare_history(ctx, u, s.dilatation, s.history);
+  compute_internal_force(ctx, u, s.dilatation, s.force, false, &s.history);
   std::vector<double> W;
-  compute_strain_energy_density(ctx, u, s.dilatation, W);
+  compute_strain_energy_density(ctx, u, s.dilatation, W, &s.history);
   Forces out;
   const auto& V = sim.discretization().volume;
   for (std::size_t i = 0; i < W.size(); ++i) out.energy += W[i] * V[i];
@@ -61,6 +66,31 @@ VectorField random_displacement(const Discretization& disc, double amplitude, st
   for (std::size_t i = 0; i < disc.num_points(); ++i)
     for (int d = 0; d < disc.dimension; ++d) u(i, d) = amplitude * (2 * uniform01(seed) - 1);
   return u;
+}
+
+/// A random per-bond history of the size of a bond extension at 1e-3 strain (plastic extension; back
+/// extension and last deviatoric extension), made deviatoric as the models keep it (Σ_j ω ξ h V_j = 0 at
+/// every point: the flow rules preserve it exactly, and W's gradient relies on it).
+void randomize_history(Simulation& sim, std::uint64_t seed) {
+  const Discretization& disc = sim.discretization();
+  const BondList& bonds = sim.bonds();
+  const MaterialParams& p = sim.model().params[0];
+  for (auto& array : sim.state().history.bond) {
+    if (array.empty()) continue;
+    for (double& value : array) value = 1e-3 * 1e-3 * (2 * uniform01(seed) - 1);
+    for (std::size_t i = 0; i < disc.num_points(); ++i) {
+      double along = 0, length_moment = 0;
+      std::vector<double> xi;
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+        const std::uint32_t j = bonds.neighbors[b];
+        xi.push_back(norm(disc.x.get(j) - disc.x.get(i)));
+        const double w = influence(p.influence, xi.back(), p.horizon) * xi.back() * disc.volume[j];
+        along += w * array[b];
+        length_moment += w * xi.back();
+      }
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) array[b] -= along / length_moment * xi[b - bonds.offsets[i]];
+    }
+  }
 }
 
 double max_abs(const std::vector<double>& v) {
@@ -93,7 +123,9 @@ TEST_P(ModelInvariants, RigidMotionGivesZeroForce) {
 }
 
 TEST_P(ModelInvariants, LinearAndAngularMomentumAreConserved) {
-  Simulation sim(testing::box_problem(setup_for(GetParam())));
+  // A yield stress of 1 MPa: every lps_plastic point is on its yield surface, with its own return r.
+  Simulation sim(testing::box_problem(setup_for(GetParam(), 1e6)));
+  randomize_history(sim, 5);
   const Discretization& disc = sim.discretization();
   const VectorField u = random_displacement(disc, 0.05 * 1e-3, 11);
   const Forces f = evaluate(sim, u);
@@ -109,10 +141,15 @@ TEST_P(ModelInvariants, LinearAndAngularMomentumAreConserved) {
   }
   EXPECT_LT(norm(net), 1e-12 * magnitude);
   EXPECT_LT(norm(moment), 1e-12 * moment_scale);
+  if (GetParam().model == ModelKind::lps_plastic) {
+    const auto& r = sim.state().history.yield_scale;
+    EXPECT_LT(*std::max_element(r.begin(), r.end()), 1.0) << "every point should be flowing plastically";
+  }
 }
 
 TEST_P(ModelInvariants, ForceIsMinusEnergyGradient) {
   Simulation sim(testing::box_problem(setup_for(GetParam())));
+  randomize_history(sim, 3);
   const Discretization& disc = sim.discretization();
   const VectorField u = random_displacement(disc, 2e-3 * 1e-3, 13);
   const Forces f = evaluate(sim, u);
@@ -139,6 +176,11 @@ const Case cases[] = {
     {"Lps3dGaussian", 3, PlaneKind::none, ModelKind::lps, InfluenceKind::gaussian},
     {"Lps2dPlaneStress", 2, PlaneKind::stress, ModelKind::lps, InfluenceKind::constant},
     {"Lps2dPlaneStrainInverseDistance", 2, PlaneKind::strain, ModelKind::lps, InfluenceKind::inverse_distance},
+    {"LpsPlastic3d", 3, PlaneKind::none, ModelKind::lps_plastic, InfluenceKind::constant},
+    {"LpsPlastic3dInverseDistance", 3, PlaneKind::none, ModelKind::lps_plastic, InfluenceKind::inverse_distance},
+    {"LpsPlastic2dPlaneStressGaussian", 2, PlaneKind::stress, ModelKind::lps_plastic, InfluenceKind::gaussian},
+    {"LpsViscoelastic3dGaussian", 3, PlaneKind::none, ModelKind::lps_viscoelastic, InfluenceKind::gaussian},
+    {"LpsViscoelastic2dPlaneStrain", 2, PlaneKind::strain, ModelKind::lps_viscoelastic, InfluenceKind::constant},
 };
 
 INSTANTIATE_TEST_SUITE_P(AllModels, ModelInvariants, ::testing::ValuesIn(cases),

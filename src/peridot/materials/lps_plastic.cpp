@@ -9,19 +9,9 @@ namespace peridot {
 
 using namespace bond_loop;
 
-double plastic_yield_norm_factor(InfluenceKind influence, double horizon, int dimension, PlaneKind plane,
-                                 double thickness) {
-  constexpr double pi = std::numbers::pi;
-  double psi_per_sigma2 = 0;  // ψ0/σ_Y²
-  if (dimension == 3) {
-    const double m = 4 * pi * influence_moment(influence, horizon, 4);
-    psi_per_sigma2 = 10 * pi * influence_squared_moment(influence, horizon, 4) / (m * m);  // (C1)
-  } else {
-    const double m = 2 * pi * thickness * influence_moment(influence, horizon, 3);
-    const double factor = plane == PlaneKind::stress ? 2 * pi : 8 * pi / 3;  // (C2) | (C3)
-    psi_per_sigma2 = factor * thickness * influence_squared_moment(influence, horizon, 3) / (m * m);
-  }
-  return std::sqrt(2 * psi_per_sigma2);
+double plastic_yield_calibration(int dimension, PlaneKind plane) {
+  if (dimension == 3) return 5.0;                      // (C1)
+  return plane == PlaneKind::stress ? 2.0 : 8.0 / 3.0;  // (C2) | (C3)
 }
 
 void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
@@ -30,16 +20,21 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
   const double* up = u.data();
   const BondList& bonds = *ctx.bonds;
   const double* plastic_extension = history.bond[0].data();
-  const double k = p.yield_norm_factor, H = p.hardening_modulus;
+  const double H = p.hardening_modulus;
   with_dimension(ctx.disc->dimension, [&](auto dim) {
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
       const double alpha = p.alpha_deviatoric * ctx.inverse_weighted_volume[i];
       double norm2 = 0, weighted = 0;  // ‖t^d_tr‖² and S = Σ (t^d_tr)²/ω V
+      double moment = 0;               // Σ ω² ξ² V over every bond, broken or not (like m)
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-        if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
+        if (bonds.broken[b]) {
+          const double xi = bond_length<Dim>(x, i, j), omega = influence(p.influence, xi, p.horizon);
+          moment += omega * omega * xi * xi * neighbor_volume(ctx, i, j, xi);
+          continue;
+        }
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
         const double ed = g.e - theta[i] * g.xi / p.dilatation_factor;
@@ -47,8 +42,10 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
         const double v = neighbor_volume(ctx, i, j, g.xi);
         norm2 += t * t * v;
         weighted += t * t / omega * v;
+        moment += omega * omega * g.xi * g.xi * v;
       }
       const double norm = std::sqrt(norm2);
+      const double k = std::sqrt(p.yield_calibration * moment) * ctx.inverse_weighted_volume[i];  // (C1)–(C3)
       const double yield_n = p.yield_stress + H * history.plastic_strain[i];
       if (!(norm > k * yield_n)) {  // elastic (also a point without intact bonds)
         history.yield_scale[i] = 1;

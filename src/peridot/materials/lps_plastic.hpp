@@ -11,14 +11,16 @@
 // Δλ = (‖t^d_tr‖/√(2ψ0) − 1)/α. For another ω it is the backward-Euler step of the flow rule
 // ė^dp = λ t^d/ω, which keeps the return radial (so exact in one step) and dissipates Σ λ (t^d)²/ω V ≥ 0.
 //
-// Calibration (reference/README.md): ψ0 = ‖t^d‖²/2 of a point with a full family at von Mises yield,
-//   (C1) 3D, any deviatoric strain:        ψ0 = 10π σ_Y² M₄/m²,     M₄ = ∫₀^δ ω² ξ⁴ dξ, m = 4π ∫₀^δ ω ξ⁴ dξ
-//        (ω = 1: 25σ_Y²/(8πδ⁵))
-//   (C2) plane stress, in-plane uniaxial: ψ0 = 2π h σ_Y² M₃/m²,     M₃ = ∫₀^δ ω² ξ³ dξ, m = 2πh ∫₀^δ ω ξ³ dξ
-//        (ω = 1: 2σ_Y²/(πhδ⁴))
-//   (C3) plane strain, in-plane pure shear: ψ0 = (8π/3) h σ_Y² M₃/m² (ω = 1: 8σ_Y²/(3πhδ⁴)).
-// The 2D deviatoric norm sees only the in-plane deviator, so one 2D constant cannot match von Mises for
-// every stress state; (C2) and (C3) are the states that stay exact. We write √(2ψ0) = k σ_Y.
+// Calibration: ψ0 is ‖t^d‖²/2 at von Mises yield, ‖t^d‖² = (α_d/m)² Σ ω² ξ² (n·ε^d n)² V for a small
+// deviatoric strain ε^d, with the direction average of (n·ε^d n)² ((2/15) ε^d:ε^d in 3D, ε^d:ε^d/4 for
+// in-plane directions), so √(2ψ0) = k σ_Y with, per point, k² = c Σ_j ω² ξ² V_j / m² and
+//   (C1) 3D, any deviatoric state:          c = 5    (continuum, ω = 1: ψ0 = 25σ_Y²/(8πδ⁵), reference/README.md)
+//   (C2) plane stress, in-plane uniaxial:  c = 2    (continuum, ω = 1: ψ0 = 2σ_Y²/(πhδ⁴))
+//   (C3) plane strain, in-plane pure shear: c = 8/3  (continuum, ω = 1: ψ0 = 8σ_Y²/(3πhδ⁴)).
+// The sums run over the point's own reference family (as m does), so the lattice quadrature of the
+// radial moment cancels between the force state and the yield value. The 2D deviatoric norm sees only
+// the in-plane deviator, so one 2D constant cannot match von Mises for every stress state; (C2) and (C3)
+// are the states that stay exact.
 //
 // Hardening: linear isotropic, σ_Y = σ_y + H ε̄p, with the equivalent plastic strain defined by the
 // plastic work, σ_Y Δε̄p = ΔW_p = Σ t^d_{n+1} Δe^dp V = r(1 − r) S/α, S = Σ (t^d_tr)²/ω V, so that a
@@ -67,8 +69,7 @@ struct LpsPlastic {
                      MaterialHistory& history, const MaterialParams& p, BlockRange range, double dt);
 };
 
-/// k = √(2ψ0)/σ_Y of (C1)–(C3) for this influence function, horizon and plane.
-double plastic_yield_norm_factor(InfluenceKind influence, double horizon, int dimension, PlaneKind plane,
-                                 double thickness);
+/// The constant c of (C1)–(C3): k² = c Σ ω² ξ² V / m².
+double plastic_yield_calibration(int dimension, PlaneKind plane);
 
 }  // namespace peridot

@@ -14,35 +14,18 @@ double planar_bulk_modulus(const ElasticConstants& c, PlaneKind plane) {
   return plane == PlaneKind::stress ? 9 * K * G / (3 * K + 4 * G) : K + G / 3;
 }
 
-namespace {
-
-/// I_p(a) = ∫₀^a x^p e^{−x²} dx by the recurrence I_p = −a^{p−1} e^{−a²}/2 + (p − 1)/2 · I_{p−2}.
-double gaussian_moment(int p, double a) {
-  const double ea = std::exp(-a * a);
-  double value = p % 2 == 0 ? std::sqrt(std::numbers::pi) / 2 * std::erf(a) : (1 - ea) / 2;
-  for (int q = p % 2 + 2; q <= p; q += 2) value = -0.5 * std::pow(a, q - 1) * ea + (q - 1) / 2.0 * value;
-  return value;
-}
-
-}  // namespace
-
 double influence_moment(InfluenceKind kind, double horizon, int p) {
   const double scale = std::pow(horizon, p + 1);
   switch (kind) {
     case InfluenceKind::constant: return scale / (p + 1);
     case InfluenceKind::inverse_distance: return scale / p;
-    case InfluenceKind::gaussian: return scale * gaussian_moment(p, 1.0);
-  }
-  return 0;
-}
-
-double influence_squared_moment(InfluenceKind kind, double horizon, int p) {
-  const double scale = std::pow(horizon, p + 1);
-  switch (kind) {
-    case InfluenceKind::constant: return scale / (p + 1);
-    case InfluenceKind::inverse_distance: return scale / (p - 1);
-    // ∫₀¹ x^p e^{−2x²} dx = 2^{−(p+1)/2} I_p(√2).
-    case InfluenceKind::gaussian: return scale * std::pow(2.0, -(p + 1) / 2.0) * gaussian_moment(p, std::sqrt(2.0));
+    case InfluenceKind::gaussian: {
+      // I_p = ∫₀¹ x^p e^{−x²} dx by the recurrence I_p = −1/(2e) + (p − 1)/2 · I_{p−2}.
+      double even = std::sqrt(std::numbers::pi) / 2 * std::erf(1.0), odd = (1 - std::exp(-1.0)) / 2;
+      double value = p % 2 == 0 ? even : odd;
+      for (int q = p % 2 + 2; q <= p; q += 2) value = -0.5 * std::exp(-1.0) + (q - 1) / 2.0 * value;
+      return scale * value;
+    }
   }
   return 0;
 }
@@ -111,7 +94,7 @@ MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const 
   if (spec.model == ModelKind::lps_plastic) {
     p.yield_stress = spec.yield_stress;
     p.hardening_modulus = spec.hardening_modulus;
-    p.yield_norm_factor = plastic_yield_norm_factor(spec.influence, horizon, problem.dimension, problem.plane, problem.thickness);
+    p.yield_calibration = plastic_yield_calibration(problem.dimension, problem.plane);
   }
   if (spec.model == ModelKind::lps_viscoelastic) {
     p.relaxing_fraction = spec.relaxing_fraction;

@@ -27,10 +27,10 @@ struct MaterialParams {
   /// Bond fails when its stretch exceeds this; +∞ without damage.
   double critical_stretch = std::numeric_limits<double>::infinity();
   /// lps_plastic (Mitchell): a point yields when ‖t^d‖ > k σ_Y, σ_Y = σ_y + H ε̄p, with
-  /// k = √(2ψ0)/σ_y from the calibration (lps_plastic.hpp).
+  /// k² = c Σ ω² ξ² V / m² and c the calibration constant (lps_plastic.hpp).
   double yield_stress = 0;
   double hardening_modulus = 0;
-  double yield_norm_factor = 0;
+  double yield_calibration = 0;
   /// lps_viscoelastic: λ_i, τ_b and, for the current Δt, ε = exp(−Δt/τ_b) and β = 1 − (τ_b/Δt)(1 − ε)
   /// (set_time_step; Δt = 0 gives ε = 1, β = 0: no time passes).
   double relaxing_fraction = 0;
@@ -76,7 +76,6 @@ inline double influence(InfluenceKind kind, double xi, double horizon) {
 
 /// ∫₀^δ ω(ξ) ξ^p dξ in closed form, for the calibration of the constants (p = 2, 3, 4).
 double influence_moment(InfluenceKind kind, double horizon, int p);
-/// ∫₀^δ ω(ξ)² ξ^p dξ in closed form (p = 3, 4), for the yield calibration of lps_plastic.
-double influence_squared_moment(InfluenceKind kind, double horizon, int p);
+
 
 }  // namespace peridot

@@ -42,6 +42,7 @@ class Simulation {
   const BondList& bonds() const { return bonds_; }
   const std::vector<NodeSet>& node_sets() const { return node_sets_; }
   const ModelContext& model() const { return model_; }
+  ModelContext& model() { return model_; }  ///< for drivers and tests that evaluate the kernels directly
   State& state() { return state_; }
   const State& state() const { return state_; }
 
