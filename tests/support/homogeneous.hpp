@@ -29,19 +29,20 @@ class HomogeneousBlock {
     return s;
   }
 
-  explicit HomogeneousBlock(const BlockSetup& s) : setup_(s), sim_(box_problem(s)) {
+  explicit HomogeneousBlock(const BlockSetup& s) : HomogeneousBlock(s, box_problem(s)) {}
+  /// The block of s with the loads, solver and output of `problem` (built from box_problem(s)).
+  HomogeneousBlock(const BlockSetup& s, const Problem& problem) : sim_(problem) {
     const Discretization& disc = sim_.discretization();
     double best = std::numeric_limits<double>::infinity();
     const Vec3 middle = 0.5 * Vec3{s.cells[0] * s.spacing, s.cells[1] * s.spacing, s.cells[2] * s.spacing};
     for (std::size_t i = 0; i < disc.num_points(); ++i)
       if (const double d = norm(disc.x.get(i) - middle); d < best) best = d, centre_ = i;
-    u_.resize(disc.num_points());
     set_time_step(sim_.model().params, 0.0);
   }
 
   Simulation& sim() { return sim_; }
   std::size_t centre() const { return centre_; }
-  const VectorField& displacement() const { return u_; }
+  const VectorField& displacement() const { return sim_.state().u; }
   const MaterialParams& params() const { return sim_.model().params[0]; }
   /// The Δt the history commit integrates over (lps_viscoelastic's ε, β).
   void set_step(double dt) {
@@ -61,18 +62,19 @@ class HomogeneousBlock {
       }
     apply(u);
   }
-  /// Any displacement field; θ and the return map for it (the history is not committed).
+  /// Any displacement field (becomes the state's u); θ and the return map for it (history not committed).
   void apply(const VectorField& u) {
-    u_ = u;
     State& state = sim_.state();
-    compute_dilatation(sim_.model(), u_, state.dilatation);
-    prepare_history(sim_.model(), u_, state.dilatation, state.history);
+    state.u = u;
+    compute_dilatation(sim_.model(), state.u, state.dilatation);
+    prepare_history(sim_.model(), state.u, state.dilatation, state.history);
   }
   /// Makes the current deformation the end of a step of length set_step.
-  void commit() { commit_history(sim_.model(), u_, sim_.state().dilatation, sim_.state().history, dt_); }
+  void commit() { commit_history(sim_.model(), sim_.state().u, sim_.state().dilatation, sim_.state().history, dt_); }
 
-  /// Calls body(b, t, e, V) for every bond b of point i: its scalar force state t = T_i⟨ξ⟩·M, its
-  /// extension e and its neighbour volume V, for the current deformation.
+  /// Calls body(b, t, g, V) for every intact bond b of point i: its scalar force state t = T_i⟨ξ⟩·M, its
+  /// geometry g and its neighbour volume V, for the state's u (and, for lps_viscoelastic, the Δt of
+  /// set_step: with Δt = 0 the committed back extension).
   template <class Body>
   void for_each_bond(std::size_t i, Body&& body) {
     const ModelContext& ctx = sim_.model();
@@ -83,7 +85,7 @@ class HomogeneousBlock {
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       if (bonds.broken[b]) continue;
       const std::uint32_t j = bonds.neighbors[b];
-      const auto g = bond_loop::bond_geometry<3>(sim_.discretization().x.data(), u_.data(), i, j);
+      const auto g = bond_loop::bond_geometry<3>(sim_.discretization().x.data(), state.u.data(), i, j);
       const double omega = influence(p.influence, g.xi, p.horizon);
       const double t = with_model(p.model, [&](auto m) { return m.force_scalar(p, fields, i, b, g.e, g.xi, omega); });
       body(b, t, g, bond_loop::neighbor_volume(ctx, i, j, g.xi));
@@ -103,10 +105,8 @@ class HomogeneousBlock {
   }
 
  private:
-  BlockSetup setup_;
   Simulation sim_;
   std::size_t centre_ = 0;
-  VectorField u_;
   double dt_ = 0;
 };
 

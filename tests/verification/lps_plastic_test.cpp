@@ -300,8 +300,10 @@ TEST(LpsPlasticDissipation, RandomLoadingNeverDissipatesNegativelyAndBalancesWor
   const double coarse_error = std::abs(coarse.work - coarse.stored - coarse.dissipated);
   const double fine_error = std::abs(fine.work - fine.stored - fine.dissipated);
   // Work = stored energy + plastic work, to the order of the integrators (trapezoid for the work, backward
-  // Euler for the return map): within 1 % of the work, and the mismatch shrinks with the step.
-  EXPECT_LT(coarse_error, 0.01 * coarse.work);
+  // Euler for the return map): measured 0.98 % of the work at strain steps of 2e-4 and 0.36 % at 1e-4, so
+  // the bounds are 1.5 % and 0.5 %, and the mismatch must shrink with the step.
+  EXPECT_LT(coarse_error, 0.015 * coarse.work);
+  EXPECT_LT(fine_error, 0.005 * fine.work);
   EXPECT_LT(fine_error, 0.7 * coarse_error);
   std::printf("random walk: work %.6g J/m^3, stored %.6g, plastic %.6g; mismatch %.3g (step 2e-4), %.3g (step 1e-4)\n",
               coarse.work, coarse.stored, coarse.dissipated, coarse_error / coarse.work, fine_error / fine.work);
