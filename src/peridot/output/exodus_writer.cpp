@@ -44,18 +44,28 @@ std::vector<char*> name_pointers(std::vector<std::string>& names) {
   return out;
 }
 
-std::vector<std::string> nodal_variable_names(int dimension, bool inelastic_fields) {
+std::vector<std::string> nodal_variable_names(int dimension, const std::vector<std::string>& extra_fields) {
   static const char* const axis[] = {"_x", "_y", "_z"};
   std::vector<std::string> names;
   for (const char* field : {"displacement", "velocity", "force_density"})
     for (int d = 0; d < dimension; ++d) names.push_back(std::string(field) + axis[d]);
   for (const char* scalar : {"damage", "dilatation", "weighted_volume", "volume"}) names.emplace_back(scalar);
-  if (inelastic_fields)
-    for (const char* scalar : {"equivalent_plastic_strain", "dissipation"}) names.emplace_back(scalar);
+  names.insert(names.end(), extra_fields.begin(), extra_fields.end());
   return names;
 }
 
+const std::vector<double>& optional_field(const State& state, const std::string& name) {
+  if (name == "equivalent_plastic_strain") return state.history.plastic_strain;
+  if (name == "dissipation") return state.history.dissipation;
+  return state.fragment;
+}
+
 }  // namespace
+
+const std::vector<std::string>& ExodusWriter::optional_fields() {
+  static const std::vector<std::string> names = {"equivalent_plastic_strain", "dissipation", "fragment"};
+  return names;
+}
 
 double ExodusWriter::equivalent_radius(double volume, int dimension, double thickness) {
   if (dimension == 2) return std::sqrt(volume / (std::numbers::pi * thickness));
@@ -68,7 +78,7 @@ void ExodusWriter::check(int status, const char* what) const {
 
 ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
                            const std::vector<NodeSetOutput>& node_sets, const std::string& title,
-                           double thickness, bool inelastic_fields)
+                           double thickness, const std::vector<std::string>& extra_fields)
     : path_(path), dimension_(disc.dimension), num_points_(disc.num_points()) {
   const std::size_t n = num_points_;
   PERIDOT_REQUIRE(dimension_ == 2 || dimension_ == 3, "Exodus output needs dimension 2 or 3");
@@ -131,8 +141,11 @@ ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
                     "disc.input_id has duplicates");
   }
 
-  inelastic_fields_ = inelastic_fields;
-  variable_names_ = nodal_variable_names(dimension_, inelastic_fields);
+  for (const std::string& name : extra_fields)
+    PERIDOT_REQUIRE(std::find(optional_fields().begin(), optional_fields().end(), name) != optional_fields().end(),
+                    "unknown optional Exodus field");
+  extra_fields_ = extra_fields;
+  variable_names_ = nodal_variable_names(dimension_, extra_fields);
   volume_.assign(disc.volume.begin(), disc.volume.end());
   buffer_.assign(n, 0.0);
 
@@ -255,7 +268,7 @@ ExodusWriter::ExodusWriter(ExodusWriter&& other) noexcept
       dimension_(other.dimension_),
       num_points_(other.num_points_),
       frames_(other.frames_),
-      inelastic_fields_(other.inelastic_fields_),
+      extra_fields_(std::move(other.extra_fields_)),
       element_points_(std::move(other.element_points_)),
       variable_names_(std::move(other.variable_names_)),
       volume_(std::move(other.volume_)),
@@ -269,7 +282,7 @@ ExodusWriter& ExodusWriter::operator=(ExodusWriter&& other) noexcept {
     dimension_ = other.dimension_;
     num_points_ = other.num_points_;
     frames_ = other.frames_;
-    inelastic_fields_ = other.inelastic_fields_;
+    extra_fields_ = std::move(other.extra_fields_);
     element_points_ = std::move(other.element_points_);
     variable_names_ = std::move(other.variable_names_);
     volume_ = std::move(other.volume_);
@@ -336,11 +349,11 @@ void ExodusWriter::write_frame(double time, const State& state) {
     check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, values), "ex_put_var");
   }
   check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, volume_.data()), "ex_put_var");
-  if (inelastic_fields_)
-    for (const std::vector<double>* field : {&state.history.plastic_strain, &state.history.dissipation}) {
-      PERIDOT_REQUIRE(field->size() == n, "state history field does not match the discretization");
-      check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, field->data()), "ex_put_var");
-    }
+  for (const std::string& name : extra_fields_) {
+    const std::vector<double>& field = optional_field(state, name);
+    PERIDOT_REQUIRE(field.size() == n, "optional state field does not match the discretization");
+    check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, field.data()), "ex_put_var");
+  }
   PERIDOT_ASSERT(var == static_cast<int>(variable_names_.size()) + 1);
 
   check(ex_put_time(exoid_, step, &time), "ex_put_time");

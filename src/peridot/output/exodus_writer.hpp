@@ -15,8 +15,9 @@
 //  - Nodal variables, in this order and with exactly these names (2D: no *_z):
 //      displacement_x, displacement_y, displacement_z, velocity_x, velocity_y, velocity_z,
 //      force_density_x, force_density_y, force_density_z, damage, dilatation, weighted_volume, volume
-//    and, when the writer is made with inelastic_fields (a problem with an inelastic model), after those:
-//      equivalent_plastic_strain, dissipation   (State::history: ε̄p, and dissipated energy density J/m³)
+//    and after those the optional fields the writer was made with (extra_fields), in the order given:
+//      equivalent_plastic_strain, dissipation   (State::history: ε̄p, dissipated energy density J/m³)
+//      fragment                                  (State::fragment: the fragment label, damage/fragments.hpp)
 //    force_density is State::force (internal force density). volume is constant, yet written every frame:
 //    an Exodus nodal variable has a value per time step, and a reader looking at frame k of a variable
 //    written only at frame 1 would see fill values. The cost is one double per point per frame.
@@ -46,7 +47,7 @@ class ExodusWriter {
   /// Throws std::runtime_error naming the path and the Exodus/netCDF message on any failure of the library,
   /// std::logic_error on inconsistent input (a node set naming a point that does not exist, …).
   ExodusWriter(const std::string& path, const Discretization& disc, const std::vector<NodeSetOutput>& node_sets,
-               const std::string& title, double thickness = 1.0, bool inelastic_fields = false);
+               const std::string& title, double thickness = 1.0, const std::vector<std::string>& extra_fields = {});
   ExodusWriter(const ExodusWriter&) = delete;
   ExodusWriter& operator=(const ExodusWriter&) = delete;
   ExodusWriter(ExodusWriter&& other) noexcept;
@@ -66,8 +67,11 @@ class ExodusWriter {
   const std::string& path() const { return path_; }
   /// Point index of every element, in Exodus element order (grouped by block; see the file comment).
   const std::vector<std::uint32_t>& element_points() const { return element_points_; }
-  /// Nodal variable names as written (13 in 3D, 10 in 2D; 2 more with inelastic fields).
+  /// Nodal variable names as written (13 in 3D, 10 in 2D, then the extra fields).
   const std::vector<std::string>& variable_names() const { return variable_names_; }
+
+  /// The optional fields a writer can be made with.
+  static const std::vector<std::string>& optional_fields();
 
   /// Radius of the sphere drawn for a point of volume V: the sphere of volume V in 3D, (3V/4π)^(1/3); in 2D
   /// the disc of area V/thickness, sqrt(V/(π·thickness)). Either way neighbouring spheres of a lattice of
@@ -83,7 +87,7 @@ class ExodusWriter {
   int dimension_ = 3;
   std::size_t num_points_ = 0;
   int frames_ = 0;
-  bool inelastic_fields_ = false;
+  std::vector<std::string> extra_fields_;
   std::vector<std::uint32_t> element_points_;
   std::vector<std::string> variable_names_;
   std::vector<double> volume_;  // copy of disc.volume: written every frame, the writer keeps no reference

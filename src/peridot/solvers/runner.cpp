@@ -23,7 +23,7 @@ const std::vector<std::string>& point_field_names() {
   static const std::vector<std::string> names = {
       "displacement_x", "displacement_y", "displacement_z", "velocity_x", "velocity_y", "velocity_z",
       "force_density_x", "force_density_y", "force_density_z", "damage", "dilatation", "weighted_volume",
-      "equivalent_plastic_strain", "dissipation"};
+      "equivalent_plastic_strain", "dissipation", "fragment"};
   return names;
 }
 
@@ -37,7 +37,17 @@ double point_field(const State& state, const std::string& field, std::size_t i) 
   if (field == "weighted_volume") return state.weighted_volume[i];
   if (field == "equivalent_plastic_strain") return state.history.plastic_strain[i];
   if (field == "dissipation") return state.history.dissipation[i];
+  if (field == "fragment") return state.fragment.empty() ? 0.0 : state.fragment[i];
   throw std::out_of_range("unknown point field '" + field + "'");
+}
+
+/// The optional Exodus fields a problem needs: plastic strain and dissipation with an inelastic model,
+/// fragment labels with damage.
+std::vector<std::string> optional_exodus_fields(const Simulation& sim) {
+  std::vector<std::string> fields;
+  if (sim.model().bond_history_arrays() > 0) fields = {"equivalent_plastic_strain", "dissipation"};
+  if (sim.model().any_damage()) fields.push_back("fragment");
+  return fields;
 }
 
 std::string describe_setup(const Simulation& sim) {
@@ -100,7 +110,8 @@ class History {
   History(const fs::path& path, Simulation& sim) : sim_(sim) {
     const Problem& problem = sim.problem();
     std::vector<std::string> columns = {"time", "step", "kinetic_energy", "strain_energy", "external_work",
-                                        "momentum_x", "momentum_y", "momentum_z", "max_damage", "dissipated_energy"};
+                                        "momentum_x", "momentum_y", "momentum_z", "max_damage", "dissipated_energy",
+                                        "fragments"};
     for (const std::string& name : problem.output.reaction_sets) {
       for (const NodeSet& set : sim.node_sets())
         if (set.name == name) reaction_sets_.push_back(&set);
@@ -117,7 +128,7 @@ class History {
     const State& s = sim_.state();
     std::vector<double> row = {s.time, static_cast<double>(s.step), t.kinetic_energy, t.strain_energy,
                                sim_.external_work(), t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage,
-                               t.dissipated_energy};
+                               t.dissipated_energy, static_cast<double>(t.fragments)};
     for (const NodeSet* set : reaction_sets_) {
       Vec3 r = sim_.reaction(*set);
       row.insert(row.end(), {r.x, r.y, r.z});
@@ -194,8 +205,7 @@ void run_problem(const Problem& problem, const RunOptions& options) {
     std::vector<NodeSetOutput> sets;
     for (const NodeSet& set : sim.node_sets()) sets.push_back({set.name, set.points});
     exodus = std::make_unique<ExodusWriter>((dir / output.exodus_file).string(), sim.discretization(), sets,
-                                            "peridot: " + problem.deck_path, problem.thickness,
-                                            sim.model().bond_history_arrays() > 0);
+                                            "peridot: " + problem.deck_path, problem.thickness, optional_exodus_fields(sim));
   }
   std::unique_ptr<History> history;
   if (output.history_every > 0) history = std::make_unique<History>(dir / output.history_file, sim);

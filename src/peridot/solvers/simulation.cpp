@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "peridot/damage/fragments.hpp"
+
 namespace peridot {
 
 Simulation::Simulation(const Problem& problem) : problem_(problem) {
@@ -165,6 +167,7 @@ void Simulation::step() {
 
 void Simulation::update_output_fields() {
   compute_damage(model_, state_.damage);
+  if (any_damage_) label_fragments(bonds_, disc_.input_id, state_.fragment);
   if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation);
 }
 
@@ -184,6 +187,13 @@ Totals Simulation::totals() {
     totals.momentum[d] = deterministic_sum(n, [&](std::size_t i) { return density(i) * disc_.volume[i] * v[3 * i + d]; });
   compute_damage(model_, state_.damage);
   for (double phi : state_.damage) totals.max_damage = std::max(totals.max_damage, phi);
+  // Without damage the bonds never change: count the fragments (separate bodies) once.
+  if (any_damage_ || initial_fragments_ == 0) {
+    totals.fragments = label_fragments(bonds_, disc_.input_id, state_.fragment);
+    if (!any_damage_) initial_fragments_ = totals.fragments;
+  } else {
+    totals.fragments = initial_fragments_;
+  }
   return totals;
 }
 

@@ -27,6 +27,7 @@ struct Totals {
   double dissipated_energy = 0;  ///< J, plastic work or viscous dissipation since t = 0
   Vec3 momentum;              ///< kg·m/s
   double max_damage = 0;
+  std::size_t fragments = 0;  ///< connected sets of points through intact bonds
 };
 
 class Simulation {
@@ -81,6 +82,7 @@ class Simulation {
   double external_work_ = 0;
   bool any_dilatation_ = false, any_damage_ = false;
   int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
+  std::size_t initial_fragments_ = 0;  ///< fragments of a problem without damage (counted once)
 };
 
 /// Sum of term(i) over i < n in chunks of fixed size, chunk results added in order: bitwise the same for

@@ -79,6 +79,7 @@ struct State {
   std::vector<double> dilatation;       ///< θ (-) (LPS; 2D: in-plane θ₂)
   std::vector<double> weighted_volume;  ///< m (m⁵; 2D m⁴·h) (LPS)
   MaterialHistory history;
+  std::vector<double> fragment;  ///< fragment label (damage/fragments.hpp), when the problem has damage
   /// Sizes the point fields for n points (zeros); the bond history stays empty until size_history.
   void resize(std::size_t n);
   /// Allocates `arrays` (1 or 2) per-bond history arrays of nnz zeros.
