@@ -6,13 +6,9 @@
 namespace peridot::correspondence {
 
 Mat3 rotation_increment(const Vec3d& omega, double dt) {
-  const double omega2 = omega.squaredNorm();
-  if (omega2 < 1e-30) return Mat3::Identity();
-  const double magnitude = std::sqrt(omega2);
-  const double theta = dt * magnitude;
-  const Mat3 Omega = skew(omega);
-  return Mat3::Identity() + (std::sin(theta) / magnitude) * Omega +
-         ((1 - std::cos(theta)) / omega2) * (Omega * Omega);
+  const Mat3 half_step = (0.5 * dt) * skew(omega);
+  // I − ½ΔtΩ has determinant 1 + |½Δt ω|² ≥ 1: always invertible.
+  return (Mat3::Identity() - half_step).inverse() * (Mat3::Identity() + half_step);
 }
 
 Mat3 flanagan_taylor_update(const Mat3& L, double dt, PolarState& polar) {

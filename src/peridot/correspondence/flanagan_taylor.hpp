@@ -5,8 +5,12 @@
 //   D = ½(L + Lᵀ) (eq 15), W = ½(L − Lᵀ)
 //   z = axial(D V − V D),  w = axial(W)
 //   ω = w + [tr(V) I − V]⁻¹ z,  Ω = [ω]×                         (F&T eqs 10–13)
-//   R_{n+1} = Q R_n,  Q = exp(Δt Ω) = I + (sin θ/|ω|) Ω + ((1 − cos θ)/|ω|²) Ω²,  θ = Δt|ω|
-//     — with the PLUS sign on Ω² (algorithms.md §1 sign warning: Ω² = ωωᵀ − |ω|² I, and QᵀQ = I needs +)
+//   R_{n+1} = Q R_n,  Q = (I − ½Δt Ω)⁻¹ (I + ½Δt Ω)   (Hughes–Winget / Cayley, F&T eq 39 family)
+//     Q is orthogonal for any Δt. Of the two increments algorithms.md §1 allows, the Cayley form is chosen
+//     because it inverts the mid-step velocity gradient of kinematics.hpp: for a rigid rotation from R_n
+//     to R_{n+1}, L = (2/Δt)(Q − I)(Q + I)⁻¹ exactly, and the Cayley map of Δt L returns Q, so a rigid
+//     rotation is recovered to round-off whatever its rate or step (the exponential map would be off by
+//     2 tan(θ/2) − θ per step). The Rodrigues form and its printed sign (see the warning there) are not used.
 //   V_{n+1} = V_n + Δt (L V_n − V_n Ω)                            (F&T steps 4–5, forward Euler)
 //   d = R_{n+1}ᵀ D R_{n+1}                                         (eq 18)
 #include "peridot/correspondence/tensor.hpp"
@@ -23,7 +27,7 @@ struct PolarState {
 /// deformation d (1/s).
 Mat3 flanagan_taylor_update(const Mat3& L, double dt, PolarState& polar);
 
-/// exp(Δt [ω]×) by Rodrigues' formula (plus sign, see above); I when |ω|² < 1e-30 (rad²/s²).
+/// Q = (I − ½Δt [ω]×)⁻¹ (I + ½Δt [ω]×), ω in rad/s.
 Mat3 rotation_increment(const Vec3d& omega, double dt);
 
 }  // namespace peridot::correspondence

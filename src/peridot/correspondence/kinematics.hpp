@@ -61,9 +61,9 @@ struct KinematicFields {
 void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
                         KinematicFields& out);
 
-/// L = Ḟ F⁻¹ (eq 14) at mid-step, F^{n+1/2} = F^{n+1} − ½Δt Ḟ (1/s). For a rigid rotation at constant rate
-/// this L is exactly skew (it is the Cayley transform of the step's rotation), so D = 0 to round-off and
-/// a rigid rotation produces no stress.
+/// L = Ḟ F⁻¹ (eq 14) at mid-step, F^{n+1/2} = F^{n+1} − ½Δt Ḟ (1/s), second-order accurate. When F^n and
+/// F^{n+1} are both rotations (F^{n+1} = Q F^n), L = (2/Δt)(Q − I)(Q + I)⁻¹ is exactly skew (the Cayley
+/// transform of Q), so D = 0 to round-off and a rigid rotation produces no stress.
 Mat3 mid_step_velocity_gradient(const Mat3& F_end, const Mat3& F_rate, double dt);
 
 }  // namespace peridot::correspondence

@@ -56,7 +56,7 @@ template <ConstitutiveLaw Law>
 std::vector<MaterialPointSample<Law>> run_uniaxial_stress(const Law& law, const UniaxialStressOptions& options) {
   const double dt = options.dt;
   const double tolerance =
-      options.lateral_stress_tolerance > 0 ? options.lateral_stress_tolerance : 1e-10 * law.shear_modulus();
+      options.lateral_stress_tolerance > 0 ? options.lateral_stress_tolerance : 1e-12 * law.shear_modulus();
   // Log-strain perturbation for the finite-difference Jacobian: large enough that the stress change
   // (~E × 1e-8) dwarfs round-off in σ, small enough that the response is linear across a yield kink
   // only rarely (Newton then simply takes another iteration).

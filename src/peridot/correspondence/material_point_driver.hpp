@@ -45,7 +45,7 @@ struct UniaxialStressOptions {
   double true_strain_rate = 0;  ///< ε̇ = d ln(λ₁)/dt (1/s); negative for compression
   double dt = 0;                ///< Δt (s)
   int num_steps = 0;
-  double lateral_stress_tolerance = 0;  ///< |σ₂₂|, |σ₃₃| at convergence (Pa); 0: 1e-10 × shear modulus
+  double lateral_stress_tolerance = 0;  ///< |σ₂₂|, |σ₃₃| at convergence (Pa); 0: 1e-12 × shear modulus
   int max_iterations = 50;              ///< Newton iterations per step before NumericalError
 };
 
