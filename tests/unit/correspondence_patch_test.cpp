@@ -4,10 +4,14 @@
 //    partial volumes), the stress of the material-point driver;
 //  - the force of a homogeneous deformation vanishes away from the surface;
 //  - Σ f V = 0 and Σ y × f V = 0 for a random deformation (with hourglass control on);
-//  - a rigid rotation gives F = R, no stress and no force.
+//  - a rigid rotation gives F = R, no stress and no force;
+//  - the force is bitwise the same with 1 and 2 threads (DESIGN.md "Determinism").
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
+
+#include <omp.h>
 
 #include "peridot/correspondence/force.hpp"
 #include "peridot/correspondence/hypoelastic.hpp"
@@ -221,6 +225,41 @@ TEST(CorrPatch, RigidRotationGivesFEqualsRNoStressNoForce) {
   // Round-off in D (~1e-16 |L|) times μΔt per step, over 160 steps.
   EXPECT_LT(worst_sigma, 1e-12 * law.shear);
   EXPECT_LT(worst_force, 1e-12 * force_scale);
+}
+
+TEST(CorrPatch, ForceIsBitwiseIndependentOfThreadCount) {
+  testing::CloudSetup setup;
+  setup.jitter = 0.25;
+  setup.partial_volume = true;
+  auto cloud = testing::make_cloud(setup);
+  const Discretization& disc = cloud->disc;
+  const std::size_t n = disc.num_points();
+  const J2Viscoplastic law = J2Viscoplastic::aluminium_6061_t6();
+  cloud->ctx.hourglass_stiffness = {hourglass_stiffness(default_hourglass_coefficient, law.bulk, cloud->horizon)};
+  std::uint64_t seed = 5;
+  VectorField u(n), v(n);
+  const double dt = 1e-7;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      u(i, d) = 0.05 * cloud->spacing * (2 * uniform01(seed) - 1);
+      v(i, d) = u(i, d) / dt;
+    }
+  auto force_with = [&](int threads) {
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    KinematicFields kin;
+    compute_kinematics(cloud->ctx, u, v, kin);
+    CorrespondenceBlock<J2Viscoplastic> block(law, whole(disc));
+    StressFields stress;
+    stress.resize(n);
+    update_block_stress(cloud->ctx, kin, dt, block, stress);
+    VectorField f;
+    compute_correspondence_force(cloud->ctx, kin, stress, u, f);
+    omp_set_num_threads(saved);
+    return f;
+  };
+  const VectorField one = force_with(1), two = force_with(2);
+  EXPECT_EQ(std::memcmp(one.data(), two.data(), 3 * n * sizeof(double)), 0);
 }
 
 }  // namespace

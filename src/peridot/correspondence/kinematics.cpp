@@ -26,7 +26,9 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
   ctx.reverse_bond.resize(bonds.num_bonds());
   ctx.hourglass_stiffness.assign(blocks.size(), 0.0);
   const auto& x = disc.x;
-#pragma omp parallel for schedule(static)
+  // No throw inside the parallel loop (OpenMP cannot propagate it): an asymmetric list is flagged.
+  bool symmetric = true;
+#pragma omp parallel for schedule(static) reduction(&& : symmetric)
   for (std::size_t i = 0; i < n; ++i) {
     const BlockGeometry& gi = blocks[disc.block[i]];
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
@@ -40,10 +42,14 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
       const auto first = bonds.neighbors.begin() + static_cast<std::ptrdiff_t>(bonds.offsets[j]);
       const auto last = bonds.neighbors.begin() + static_cast<std::ptrdiff_t>(bonds.offsets[j + 1]);
       const auto it = std::lower_bound(first, last, static_cast<std::uint32_t>(i));
-      PERIDOT_REQUIRE(it != last && *it == i, "bond list is not symmetric");
+      if (it == last || *it != i) {
+        symmetric = false;
+        continue;
+      }
       ctx.reverse_bond[b] = static_cast<std::uint64_t>(it - bonds.neighbors.begin());
     }
   }
+  PERIDOT_REQUIRE(symmetric, "bond list is not symmetric (j in the family of i but not i in that of j)");
   return ctx;
 }
 
