@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 
@@ -69,7 +70,6 @@ TEST(CorrFlanaganTaylor, RotationWithStretchConvergesToPolarDecomposition) {
     drive(F_of_t, 1.0 / steps, steps, polar);
     const double error = (polar.rotation - R_exact).norm();
     const double stretch_error = (polar.left_stretch - V_exact).norm();
-    RecordProperty("R_error_" + std::to_string(steps), std::to_string(error));
     std::printf("steps %4d: |R - R_polar| = %.3e, |V - V_polar| = %.3e\n", steps, error, stretch_error);
     EXPECT_LT((polar.rotation.transpose() * polar.rotation - Mat3::Identity()).norm(), 1e-13);
     EXPECT_NEAR(polar.rotation.determinant(), 1.0, 1e-13);
