@@ -1,0 +1,70 @@
+// Correspondence force state and gather (Foster, Silling & Chen 2010 eqs 4, 25) and hourglass control
+// (reference/algorithms.md §2a).
+#include "peridot/correspondence/force.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace peridot::correspondence {
+
+double hourglass_stiffness(double coefficient, double bulk_modulus, double horizon) {
+  return 18.0 * coefficient * bulk_modulus / (std::numbers::pi * std::pow(horizon, 4));
+}
+
+void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
+                                  const StressFields& s, const VectorField& u, VectorField& f) {
+  const Discretization& disc = *ctx.disc;
+  const BondList& bonds = *ctx.bonds;
+  const std::size_t n = disc.num_points();
+  if (f.size() != n) f.resize(n);
+  const bool hourglass =
+      std::any_of(ctx.hourglass_stiffness.begin(), ctx.hourglass_stiffness.end(), [](double c) { return c != 0; });
+  const double* x = disc.x.data();
+  const double* up = u.data();
+  const double* A = s.force_tensor.data();
+  const double* F = kin.deformation_gradient.data();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* Ai = A + 9 * i;
+    const double* Fi = F + 9 * i;
+    const double ci = hourglass ? ctx.hourglass_stiffness[disc.block[i]] : 0.0;
+    double fi[3] = {0, 0, 0};
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      if (bonds.broken[b]) continue;
+      const std::size_t j = bonds.neighbors[b];
+      const double wi = ctx.bond_weight[b];
+      const double wj = ctx.bond_weight[ctx.reverse_bond[b]];
+      const double* Aj = A + 9 * j;
+      double xi[3];
+      for (int d = 0; d < 3; ++d) xi[d] = x[3 * j + d] - x[3 * i + d];
+      // T_i⟨ξ⟩ − T_j⟨−ξ⟩ = (ω_i P_i K_i⁻¹ + ω_j P_j K_j⁻¹) ξ
+      double t[3];
+      for (int r = 0; r < 3; ++r)
+        t[r] = wi * (Ai[3 * r] * xi[0] + Ai[3 * r + 1] * xi[1] + Ai[3 * r + 2] * xi[2]) +
+               wj * (Aj[3 * r] * xi[0] + Aj[3 * r + 1] * xi[1] + Aj[3 * r + 2] * xi[2]);
+      if (hourglass) {
+        const double cj = ctx.hourglass_stiffness[disc.block[j]];
+        const double* Fj = F + 9 * j;
+        double y[3];
+        for (int d = 0; d < 3; ++d) y[d] = xi[d] + (up[3 * j + d] - up[3 * i + d]);
+        const double y_length = std::sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
+        const double xi_length = std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+        // (Y − F ξ)·n for the affine prediction of each end: both ends' states act along n.
+        double zi_n = 0, zj_n = 0;
+        for (int r = 0; r < 3; ++r) {
+          const double nr = y[r] / y_length;
+          zi_n += (y[r] - (Fi[3 * r] * xi[0] + Fi[3 * r + 1] * xi[1] + Fi[3 * r + 2] * xi[2])) * nr;
+          zj_n += (y[r] - (Fj[3 * r] * xi[0] + Fj[3 * r + 1] * xi[1] + Fj[3 * r + 2] * xi[2])) * nr;
+        }
+        const double scalar = (wi * ci * zi_n + wj * cj * zj_n) / (xi_length * y_length);
+        for (int r = 0; r < 3; ++r) t[r] += scalar * y[r];
+      }
+      const double vj = disc.volume[j];
+      for (int r = 0; r < 3; ++r) fi[r] += t[r] * vj;
+    }
+    for (int r = 0; r < 3; ++r) f(i, r) = fi[r];
+  }
+}
+
+}  // namespace peridot::correspondence

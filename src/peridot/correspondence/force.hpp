@@ -1,0 +1,34 @@
+#pragma once
+// Internal force of the correspondence model, with optional hourglass (zero-energy mode) control.
+// Reference: Foster, Silling & Chen, IJNME 81 (2010) 1242, eqs 4 and 25; hourglass force of Peridigm
+// (Littlewood), restated in reference/algorithms.md §2a.
+//   force state      T_i⟨ξ⟩ = ω P_i K_i⁻¹ ξ                                                 (eq 25)
+//   hourglass state  T_i^hg⟨ξ⟩ = ω (c_hg/|ξ|) (z_i · n) n,  z_i = Y − F_i ξ,  n = Y/|Y|     (§2a)
+//                    c_hg = 18 C_HG K/(π δ⁴) (N/m⁶): C_HG times the 3D PMB micromodulus of bulk modulus K,
+//                    so the control is a weak bond on the non-affine part of each bond's stretch. Peridigm's
+//                    examples use C_HG = 0.02–0.05; tests/unit/correspondence_hourglass_test.cpp measures
+//                    what 0.05 does. An affine deformation has z = 0, so the control adds no force there
+//                    and leaves the patch tests exact.
+//   gather           f_i = Σ_j (T_i⟨ξ_ij⟩ − T_j⟨ξ_ji⟩) V_j                                    (eq 4)
+// ω is the bond weight of the context (influence function times partial-volume factor) of the state's
+// owner; broken bonds carry no force. OpenMP over points, no atomics: bitwise independent of threads.
+// Since Σ_j ω Y⊗(P K⁻¹ ξ) V_j = F Pᵀ = J σ is symmetric, the correspondence force conserves angular
+// as well as linear momentum; the hourglass force is central and conserves both too.
+#include "peridot/correspondence/constitutive.hpp"
+#include "peridot/correspondence/kinematics.hpp"
+
+namespace peridot::correspondence {
+
+/// Dimensionless hourglass coefficient C_HG used when none is chosen (see above).
+inline constexpr double default_hourglass_coefficient = 0.05;
+
+/// c_hg = 18 C_HG K/(π δ⁴) (N/m⁶) from C_HG (-), the bulk modulus K (Pa) and the horizon δ (m).
+double hourglass_stiffness(double coefficient, double bulk_modulus, double horizon);
+
+/// Internal force density f (N/m³) of every point from the force tensors P K⁻¹ of s (update_block_stress)
+/// and, where ctx.hourglass_stiffness is non-zero, the hourglass force of u and the F of kin. u must be the
+/// displacement the kinematics was computed from.
+void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
+                                  const StressFields& s, const VectorField& u, VectorField& f);
+
+}  // namespace peridot::correspondence

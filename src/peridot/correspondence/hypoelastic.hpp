@@ -1,0 +1,27 @@
+#pragma once
+// Isotropic hypoelastic law in the unrotated frame (Foster, Silling & Chen 2010, eqs 19–22; reference/
+// algorithms.md §1 step 9):
+//   τ_{n+1} = τ_n + Δt (λ tr(d) I + 2G d),   λ = K − ⅔G,
+// with d the unrotated rate of deformation (eq 18). Because τ̇ is objective (eq 21), a rigid rotation
+// leaves τ unchanged and only rotates σ = R τ Rᵀ (eq 23). In small strain it is Hooke's law.
+#include "peridot/correspondence/constitutive.hpp"
+
+namespace peridot::correspondence {
+
+struct Hypoelastic {
+  double bulk = 0;   ///< K (Pa)
+  double shear = 0;  ///< G (Pa)
+
+  struct History {};  ///< no state beyond τ
+
+  Mat3 update(const Mat3& tau, const Mat3& d, double dt, History& history) const;
+  double bulk_modulus() const { return bulk; }
+  double shear_modulus() const { return shear; }
+
+  /// From Young's modulus E (Pa) and Poisson's ratio ν (-).
+  static Hypoelastic from_young_poisson(double E, double nu);
+};
+
+static_assert(ConstitutiveLaw<Hypoelastic>);
+
+}  // namespace peridot::correspondence

@@ -1,0 +1,52 @@
+#pragma once
+// J2 (von Mises) viscoplasticity with power-law strain hardening and rate dependence, in the unrotated
+// frame. Reference: Foster, Silling & Chen, "Viscoplasticity using peridynamics", IJNME 81 (2010) 1242, §5–9.
+//   flow stress        G(εp, ε̇p) = Y (1 + εp/ε0)^(1/n) (1 + ε̇p/ε̇0)^(1/m)          (eqs 58, 59)
+//   deviatoric trial   S^tr = S_n + 2μ Δe,  Δe = dev(d) Δt                             (eqs 30, 49)
+//   yield check        |S^tr| ≥ √(2/3) G(εp_n, 0)  (the smallest surface any Δλ ≥ 0 can give)
+//   implicit rate      |S^tr| − 2μ Δλ − √(2/3) G(εp_n, √(2/3) Δλ/Δt) = 0                (eqs 48, 60)
+//                      solved for Δλ ∈ [0, |S^tr|/(2μ)] by Brent's method (bracketed_root.hpp). This is
+//                      eq 60 with Δe and S_{t−Δt} projected on the return direction Q^tr = S^tr/|S^tr|,
+//                      (2μΔe + S_n) : Q^tr = |S^tr|, which puts the returned stress exactly on the surface.
+//   radial return      S_{n+1} = √(2/3) G_t Q^tr                                          (eq 50, 61)
+//   pressure           p_{n+1} = p_n + K tr(d) Δt,  τ = S + p I                           (eqs 51, 52)
+//   plastic strain     εp_{n+1} = εp_n + √(2/3) (Δe − (S_{n+1} − S_n)/(2μ)) : Q_mid,
+//                      Q_mid = (Q_{n+1} + Q_n)/2                                          (eqs 56, 57)
+//                      (Q_n = Q_{n+1} when S_n = 0; the increment is floored at 0 so that a step that
+//                      reverses the stress direction can never reduce εp.)
+// The yield surface of step n+1 is evaluated at εp_n (eq 37, backward implicit in the rate only).
+// Foster's 6061-T6 aluminium: E = 68.9 GPa, ν = 0.333, Y = 276 MPa, n = 13.5, m = 44, ε0 = 0.001,
+// ε̇0 = 1000 /s (§10). m = ∞ gives the rate-independent law.
+#include "peridot/correspondence/constitutive.hpp"
+
+namespace peridot::correspondence {
+
+struct J2Viscoplastic {
+  double bulk = 0;                           ///< K (Pa)
+  double shear = 0;                          ///< μ (Pa)
+  double yield_stress = 0;                   ///< Y, quasi-static yield stress (Pa)
+  double hardening_exponent = 1;             ///< n (-)
+  double rate_exponent = 1;                  ///< m (-); +∞: rate independent
+  double reference_plastic_strain = 1;       ///< ε0 (-)
+  double reference_plastic_strain_rate = 1;  ///< ε̇0 (1/s)
+
+  struct History {
+    double equivalent_plastic_strain = 0;       ///< εp (-)
+    double equivalent_plastic_strain_rate = 0;  ///< ε̇p of the last step (1/s)
+    double flow_stress = 0;                     ///< G_t of the last plastic step, 0 if elastic (Pa)
+  };
+
+  /// G(εp, ε̇p) (Pa), eqs 58–59.
+  double flow_stress(double eqps, double eqps_rate) const;
+
+  Mat3 update(const Mat3& tau, const Mat3& d, double dt, History& history) const;
+  double bulk_modulus() const { return bulk; }
+  double shear_modulus() const { return shear; }
+
+  /// Foster et al. (2010) §10 fit to 6061-T6 (Song, Chen & Frew 2002).
+  static J2Viscoplastic aluminium_6061_t6();
+};
+
+static_assert(ConstitutiveLaw<J2Viscoplastic>);
+
+}  // namespace peridot::correspondence

@@ -1,0 +1,146 @@
+// Shape tensor, deformation gradient and its rate: Foster, Silling & Chen (2010) eqs 10, 13, 14.
+#include "peridot/correspondence/kinematics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "peridot/core/error.hpp"
+#include "peridot/materials/material.hpp"
+#include "peridot/neighbor/neighborhood.hpp"
+
+namespace peridot::correspondence {
+
+CorrespondenceContext make_correspondence_context(const Discretization& disc, const BondList& bonds,
+                                                  const std::vector<BlockGeometry>& blocks,
+                                                  double partial_volume_radius) {
+  PERIDOT_REQUIRE(disc.dimension == 3, "the correspondence model is implemented in 3D only");
+  const std::size_t n = disc.num_points();
+  PERIDOT_REQUIRE(bonds.offsets.size() == n + 1, "bond list does not match the discretization");
+  CorrespondenceContext ctx;
+  ctx.disc = &disc;
+  ctx.bonds = &bonds;
+  ctx.bond_weight.resize(bonds.num_bonds());
+  ctx.reverse_bond.resize(bonds.num_bonds());
+  ctx.hourglass_stiffness.assign(blocks.size(), 0.0);
+  const auto& x = disc.x;
+  // No throw inside the parallel loop (OpenMP cannot propagate it): an asymmetric list is flagged.
+  bool symmetric = true;
+#pragma omp parallel for schedule(static) reduction(&& : symmetric)
+  for (std::size_t i = 0; i < n; ++i) {
+    const BlockGeometry& gi = blocks[disc.block[i]];
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      const std::uint32_t j = bonds.neighbors[b];
+      const BlockGeometry& gj = blocks[disc.block[j]];
+      const double xi = norm(x.get(j) - x.get(i));
+      const double pair_horizon = std::max(gi.horizon, gj.horizon);
+      ctx.bond_weight[b] =
+          influence(gi.influence, xi, gi.horizon) * partial_volume_factor(xi, pair_horizon, partial_volume_radius);
+      // Neighbour lists are sorted (neighborhood.cpp), so the partner bond is found by bisection.
+      const auto first = bonds.neighbors.begin() + static_cast<std::ptrdiff_t>(bonds.offsets[j]);
+      const auto last = bonds.neighbors.begin() + static_cast<std::ptrdiff_t>(bonds.offsets[j + 1]);
+      const auto it = std::lower_bound(first, last, static_cast<std::uint32_t>(i));
+      if (it == last || *it != i) {
+        symmetric = false;
+        continue;
+      }
+      ctx.reverse_bond[b] = static_cast<std::uint64_t>(it - bonds.neighbors.begin());
+    }
+  }
+  PERIDOT_REQUIRE(symmetric, "bond list is not symmetric (j in the family of i but not i in that of j)");
+  return ctx;
+}
+
+namespace {
+
+[[noreturn]] void throw_singular_shape_tensor(const CorrespondenceContext& ctx, std::size_t i, const Mat3& K) {
+  const Discretization& disc = *ctx.disc;
+  const BondList& bonds = *ctx.bonds;
+  std::size_t intact = 0;
+  for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) intact += bonds.broken[b] ? 0 : 1;
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(K, Eigen::EigenvaluesOnly);
+  const double lmax = eig.eigenvalues()(2);
+  const double ratio = lmax > 0 ? eig.eigenvalues()(0) / lmax : 0.0;
+  const std::uint32_t id = i < disc.input_id.size() ? disc.input_id[i] : static_cast<std::uint32_t>(i);
+  throw NumericalError(fmt::format(
+      "correspondence model: point {} (input id {}) at ({:g}, {:g}, {:g}) m has a singular shape tensor K "
+      "(eq 10): {} intact bonds, λ_min/λ_max = {:.3g} < {:g}; the point needs at least three non-coplanar "
+      "intact bonds",
+      i, id, disc.x(i, 0), disc.x(i, 1), disc.x(i, 2), intact, ratio, ctx.min_reciprocal_condition));
+}
+
+}  // namespace
+
+void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
+                        KinematicFields& out) {
+  const Discretization& disc = *ctx.disc;
+  const BondList& bonds = *ctx.bonds;
+  const std::size_t n = disc.num_points();
+  if (out.shape_inverse.size() != n) {
+    out.shape_inverse = TensorField(n);
+    out.deformation_gradient = TensorField(n);
+    out.deformation_gradient_rate = TensorField(n);
+  }
+  const double* x = disc.x.data();
+  const double* up = u.data();
+  const double* vp = v.data();
+  // A failure inside the parallel loop cannot throw across OpenMP; the lowest bad index is reported after
+  // the loop, which makes the message independent of the thread count.
+  std::size_t first_bad = std::numeric_limits<std::size_t>::max();
+#pragma omp parallel for schedule(static) reduction(min : first_bad)
+  for (std::size_t i = 0; i < n; ++i) {
+    double K[9] = {}, N[9] = {}, Ndot[9] = {};
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      if (bonds.broken[b]) continue;
+      const std::size_t j = bonds.neighbors[b];
+      const double w = ctx.bond_weight[b] * disc.volume[j];
+      double xi[3], y[3], dv[3];
+      for (int d = 0; d < 3; ++d) {
+        xi[d] = x[3 * j + d] - x[3 * i + d];
+        y[d] = xi[d] + (up[3 * j + d] - up[3 * i + d]);
+        dv[d] = vp[3 * j + d] - vp[3 * i + d];
+      }
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          K[3 * r + c] += w * xi[r] * xi[c];
+          N[3 * r + c] += w * y[r] * xi[c];
+          Ndot[3 * r + c] += w * dv[r] * xi[c];
+        }
+    }
+    const Mat3 Km = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(K);
+    // K is symmetric positive semi-definite; its extreme eigenvalues measure how far it is from singular.
+    const Eigen::SelfAdjointEigenSolver<Mat3> eig(Km, Eigen::EigenvaluesOnly);
+    const double lmin = eig.eigenvalues()(0), lmax = eig.eigenvalues()(2);
+    if (!(lmax > 0) || !(lmin >= ctx.min_reciprocal_condition * lmax)) {
+      first_bad = std::min(first_bad, i);
+      continue;
+    }
+    const Mat3 Kinv = Km.inverse();
+    const Mat3 F = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(N) * Kinv;
+    const Mat3 Fdot = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(Ndot) * Kinv;
+    out.shape_inverse.set(i, Kinv);
+    out.deformation_gradient.set(i, F);
+    out.deformation_gradient_rate.set(i, Fdot);
+  }
+  if (first_bad != std::numeric_limits<std::size_t>::max()) {
+    // Recompute K of that point alone for the message.
+    Mat3 K = Mat3::Zero();
+    for (std::uint64_t b = bonds.offsets[first_bad]; b < bonds.offsets[first_bad + 1]; ++b) {
+      if (bonds.broken[b]) continue;
+      const std::size_t j = bonds.neighbors[b];
+      const Vec3d xi(x[3 * j] - x[3 * first_bad], x[3 * j + 1] - x[3 * first_bad + 1],
+                     x[3 * j + 2] - x[3 * first_bad + 2]);
+      K += ctx.bond_weight[b] * disc.volume[j] * xi * xi.transpose();
+    }
+    throw_singular_shape_tensor(ctx, first_bad, K);
+  }
+}
+
+Mat3 mid_step_velocity_gradient(const Mat3& F_end, const Mat3& F_rate, double dt) {
+  const Mat3 F_mid = F_end - 0.5 * dt * F_rate;
+  return F_rate * F_mid.inverse();
+}
+
+}  // namespace peridot::correspondence

@@ -1,0 +1,69 @@
+#pragma once
+// Kinematics of the correspondence (non-ordinary state-based) model, point by point over its CSR bonds.
+// Reference: Foster, Silling & Chen, "Viscoplasticity using peridynamics", IJNME 81 (2010) 1242 —
+//   shape tensor          K   = Σ_j ω ξ⊗ξ V_j                      (eq 10)
+//   deformation gradient  F   = [Σ_j ω Y⟨ξ⟩⊗ξ V_j] K⁻¹              (eq 13)
+//   its rate              Ḟ   = [Σ_j ω (v_j − v_i)⊗ξ V_j] K⁻¹       (eq 13 differentiated in time; the
+//                                                                   velocity state, reference/algorithms.md §3)
+//   velocity gradient     L   = Ḟ F⁻¹                              (eq 14)
+// ω here is the influence function times the partial-volume factor of the bond, so K, F, Ḟ and the force
+// state (force.hpp) all use the same quadrature and F is exact for every affine deformation, at every
+// point, boundaries included (the proof after eq 13). Broken bonds are left out of every sum.
+// Only 3D is implemented: in 2D the out-of-plane row of K is empty.
+#include <cstdint>
+#include <vector>
+
+#include "peridot/correspondence/tensor.hpp"
+#include "peridot/deck/problem.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot::correspondence {
+
+/// What the kinematics needs to know of one block.
+struct BlockGeometry {
+  double horizon = 0;  ///< δ (m)
+  InfluenceKind influence = InfluenceKind::constant;
+};
+
+/// What the correspondence bond loops read that does not change during a run.
+struct CorrespondenceContext {
+  const Discretization* disc = nullptr;
+  const BondList* bonds = nullptr;
+  /// Per bond i → j: ω_i(|ξ|) times the partial-volume factor (dimensionless); ω of i's block.
+  std::vector<double> bond_weight;
+  /// Per bond i → j: the index of the bond j → i (the gather needs j's weight of the same pair).
+  std::vector<std::uint64_t> reverse_bond;
+  /// Per block: hourglass bond stiffness c_hg (N/m⁶), 0 = no control (see force.hpp).
+  std::vector<double> hourglass_stiffness;
+  /// K is refused when λ_min(K)/λ_max(K) falls below this (dimensionless). At 1e-8 the relative error
+  /// that round-off in the bond sums can put into F through K⁻¹ stays near 1e-8.
+  double min_reciprocal_condition = 1e-8;
+};
+
+/// Bond weights and reverse-bond indices for a discretization whose blocks are described by `blocks`
+/// (indexed by disc.block). `partial_volume_radius` as in NeighborhoodOptions (0: none); the pair horizon
+/// for the partial-volume factor is the larger of the two blocks'.
+CorrespondenceContext make_correspondence_context(const Discretization& disc, const BondList& bonds,
+                                                  const std::vector<BlockGeometry>& blocks,
+                                                  double partial_volume_radius = 0);
+
+/// Per-point kinematic fields.
+struct KinematicFields {
+  TensorField shape_inverse;              ///< K⁻¹ (m⁻⁵)
+  TensorField deformation_gradient;       ///< F at the end of the step (-)
+  TensorField deformation_gradient_rate;  ///< Ḟ from the velocities passed (1/s)
+};
+
+/// K⁻¹, F(u) and Ḟ(v) of every point. In an explicit step, u is u^{n+1} and v the mid-step velocity
+/// v^{n+1/2}, so that Ḟ = (F^{n+1} − F^n)/Δt exactly for a homogeneous motion.
+/// Throws NumericalError naming the lowest-numbered point (its index, input id and position) whose K is
+/// singular or ill-conditioned (fewer than three non-coplanar intact bonds), rather than producing NaNs.
+void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
+                        KinematicFields& out);
+
+/// L = Ḟ F⁻¹ (eq 14) at mid-step, F^{n+1/2} = F^{n+1} − ½Δt Ḟ (1/s), second-order accurate. When F^n and
+/// F^{n+1} are both rotations (F^{n+1} = Q F^n), L = (2/Δt)(Q − I)(Q + I)⁻¹ is exactly skew (the Cayley
+/// transform of Q), so D = 0 to round-off and a rigid rotation produces no stress.
+Mat3 mid_step_velocity_gradient(const Mat3& F_end, const Mat3& F_rate, double dt);
+
+}  // namespace peridot::correspondence
