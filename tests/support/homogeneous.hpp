@@ -66,7 +66,7 @@ class HomogeneousBlock {
   void apply(const VectorField& u) {
     State& state = sim_.state();
     state.u = u;
-    compute_dilatation(sim_.model(), state.u, state.dilatation);
+    compute_dilatation(sim_.model(), state.u, state.dilatation, false, &state.history);
     prepare_history(sim_.model(), state.u, state.dilatation, state.history);
   }
   /// Makes the current deformation the end of a step of length set_step.

@@ -48,7 +48,7 @@ struct Forces {
 Forces evaluate(Simulation& sim, const VectorField& u) {
   const ModelContext& ctx = sim.model();
   State& s = sim.state();
-  compute_dilatation(ctx, u, s.dilatation);
+  compute_dilatation(ctx, u, s.dilatation, false, &s.history);
   prepare_history(ctx, u, s.dilatation, s.history);
   compute_internal_force(ctx, u, s.dilatation, s.force, false, &s.history);
   std::vector<double> W;
@@ -71,13 +71,14 @@ VectorField random_displacement(const Discretization& disc, double amplitude, st
 /// A random per-bond history of the size of a bond extension at 1e-3 strain (plastic extension; back
 /// extension and last deviatoric extension), made deviatoric as the models keep it (Σ_j ω ξ h V_j = 0 at
 /// every point: the flow rules preserve it exactly, and W's gradient relies on it).
-void randomize_history(Simulation& sim, std::uint64_t seed) {
+void randomize_history(Simulation& sim, std::uint64_t seed, bool deviatoric = true) {
   const Discretization& disc = sim.discretization();
   const BondList& bonds = sim.bonds();
   const MaterialParams& p = sim.model().params[0];
   for (auto& array : sim.state().history.bond) {
     if (array.empty()) continue;
     for (double& value : array) value = 1e-3 * 1e-3 * (2 * uniform01(seed) - 1);
+    if (!deviatoric) continue;
     for (std::size_t i = 0; i < disc.num_points(); ++i) {
       double along = 0, length_moment = 0;
       std::vector<double> xi;
@@ -156,6 +157,41 @@ TEST_P(ModelInvariants, ForceIsMinusEnergyGradient) {
   const double h = 1e-6 * 1e-3;  // central difference step (m)
   const double scale = max_abs(f.force_times_volume);
   // Interior, edge and corner points: every sort of family.
+  for (std::size_t i : {std::size_t{0}, disc.num_points() / 2, disc.num_points() / 3, disc.num_points() - 1}) {
+    for (int d = 0; d < disc.dimension; ++d) {
+      VectorField plus = u, minus = u;
+      plus(i, d) += h;
+      minus(i, d) -= h;
+      const double gradient = (evaluate(sim, plus).energy - evaluate(sim, minus).energy) / (2 * h);
+      EXPECT_NEAR(f.force_times_volume[3 * i + d], -gradient, 1e-6 * scale) << "point " << i << " component " << d;
+    }
+  }
+}
+
+// With broken bonds (both directions of a random tenth of the pairs) and an arbitrary, not deviatoric,
+// history: pmb and lps_plastic keep f = −∂W/∂u on a damaged family (lps_plastic.hpp (P6)). lps and
+// lps_viscoelastic do not: with m over all bonds and θ over the intact ones, Σ ω ξ e^d V ≠ 0 on a damaged
+// family, and their force lacks the term −(α_d/m) q ω ξ that lps_plastic has (as in Peridigm; see their pages).
+TEST_P(ModelInvariants, ForceIsMinusEnergyGradientWithBrokenBonds) {
+  if (GetParam().model == ModelKind::lps || GetParam().model == ModelKind::lps_viscoelastic)
+    GTEST_SKIP() << "not an exact gradient on a damaged family (documented)";
+  Simulation sim(testing::box_problem(setup_for(GetParam())));
+  randomize_history(sim, 3, false);
+  BondList& bonds = const_cast<BondList&>(sim.bonds());
+  std::uint64_t seed = 99;
+  for (std::size_t i = 0; i < bonds.offsets.size() - 1; ++i)
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      const std::uint32_t j = bonds.neighbors[b];
+      if (j < i || uniform01(seed) > 0.1) continue;
+      bonds.broken[b] = 1;
+      for (std::uint64_t c = bonds.offsets[j]; c < bonds.offsets[j + 1]; ++c)
+        if (bonds.neighbors[c] == i) bonds.broken[c] = 1;
+    }
+  const Discretization& disc = sim.discretization();
+  const VectorField u = random_displacement(disc, 2e-3 * 1e-3, 13);
+  const Forces f = evaluate(sim, u);
+  const double h = 1e-6 * 1e-3;
+  const double scale = max_abs(f.force_times_volume);
   for (std::size_t i : {std::size_t{0}, disc.num_points() / 2, disc.num_points() / 3, disc.num_points() - 1}) {
     for (int d = 0; d < disc.dimension; ++d) {
       VectorField plus = u, minus = u;

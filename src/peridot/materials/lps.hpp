@@ -19,6 +19,8 @@ namespace peridot {
 struct Lps {
   static constexpr bool uses_dilatation = true;
   static constexpr int bond_history_arrays = 0;
+  /// The extension a bond adds to the dilatation sum.
+  static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
 
   /// 1/m is precomputed per point: a kernel multiplies, never divides, per bond.
   static double force_scalar(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,

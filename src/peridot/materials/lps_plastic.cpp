@@ -26,8 +26,10 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
       const double alpha = p.alpha_deviatoric * ctx.inverse_weighted_volume[i];
+      const double released = history.released_extension[i];  // (P8)
       double norm2 = 0, weighted = 0;  // ‖t^d_tr‖² and S = Σ (t^d_tr)²/ω V
       double moment = 0;               // Σ ω² ξ² V over every bond, broken or not (like m)
+      double along = 0;                // Σ ω ξ (e^d − e^dp_n) V over the intact bonds (P6)
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         const std::uint32_t j = bonds.neighbors[b];
         if (bonds.broken[b]) {
@@ -38,10 +40,12 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
         const double ed = g.e - theta[i] * g.xi / p.dilatation_factor;
-        const double t = alpha * omega * (ed - plastic_extension[b]);
+        const double elastic = ed - plastic_extension[b] - released * g.xi;
+        const double t = alpha * omega * elastic;
         const double v = neighbor_volume(ctx, i, j, g.xi);
         norm2 += t * t * v;
         weighted += t * t / omega * v;
+        along += omega * g.xi * elastic * v;
         moment += omega * omega * g.xi * g.xi * v;
       }
       const double norm = std::sqrt(norm2);
@@ -50,12 +54,14 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
       if (!(norm > k * yield_n)) {  // elastic (also a point without intact bonds)
         history.yield_scale[i] = 1;
         history.plastic_strain_increment[i] = 0;
+        history.deviatoric_moment[i] = along * ctx.inverse_weighted_volume[i];
         continue;
       }
       const double g = k * weighted / (alpha * norm);
       const double increment = g * (1 - k * yield_n / norm) / (1 + g * k * H / norm);  // (P5)
       history.plastic_strain_increment[i] = increment;
       history.yield_scale[i] = k * (yield_n + H * increment) / norm;
+      history.deviatoric_moment[i] = history.yield_scale[i] * along * ctx.inverse_weighted_volume[i];
     }
   });
 }
@@ -70,14 +76,16 @@ void LpsPlastic::commit(const ModelContext& ctx, const VectorField& u, const std
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
-      const double r = history.yield_scale[i];
-      if (r == 1) continue;  // elastic step: nothing changes
+      const double r = history.yield_scale[i], released = history.released_extension[i];
+      if (r == 1 && released == 0) continue;  // elastic step, no bond broke: nothing changes
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         if (bonds.broken[b]) continue;
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, bonds.neighbors[b]);
         const double ed = g.e - theta[i] * g.xi / p.dilatation_factor;
-        plastic_extension[b] += (1 - r) * (ed - plastic_extension[b]);  // (P4)
+        const double plastic = plastic_extension[b] + released * g.xi;  // (P8)
+        plastic_extension[b] = plastic + (1 - r) * (ed - plastic);      // (P4)
       }
+      history.released_extension[i] = 0;
       const double increment = history.plastic_strain_increment[i];
       history.plastic_strain[i] += increment;
       // W_p increment = σ_Y,n+1 Δε̄p (P5)

@@ -2,7 +2,8 @@
 // Elastic-plastic ordinary state-based solid (Mitchell 2011, papers/001; papers/003 "Elastic-plastic
 // model"; reference/algorithms.md §8). The LPS of lps.hpp with the deviatoric extension split additively,
 // e^d = e^de + e^dp, the plastic part e^dp a history value of every bond:
-//   (P1) t = (ω/m)[α_v θ ξ + α_d (e^d − e^dp)],  e^d = e − θξ/n          (n, α_v, α_d as in lps.hpp)
+//   (P1) t = (ω/m)[α_v θ ξ + α_d (e^d − e^dp − q ξ)],  e^d = e − θξ/n, θ as in (P7)  (n, α_v, α_d: lps.hpp)
+//        q = Σ ω ξ (e^d − e^dp) V / m over the intact bonds (see (P6))
 //   (P2) yield function f(t^d) = ‖t^d‖²/2 − ψ0(ε̄p),  ‖t^d‖² = Σ (t^d)² V over the point's intact bonds
 //   (P3) trial state t^d_tr = α ω (e^d_{n+1} − e^dp_n), α = α_d/m; elastic when ‖t^d_tr‖ ≤ √(2ψ0)
 //   (P4) otherwise the radial return t^d_{n+1} = r t^d_tr, r = √(2ψ0)/‖t^d_tr‖, and
@@ -29,6 +30,18 @@
 //        σ_Y,n+1 = σ_Y,n + HΔε̄p,  r = kσ_Y,n+1/‖t^d_tr‖.
 // History: MaterialHistory::bond[0] = e^dp per bond; plastic_strain = ε̄p and dissipation = W_p per point.
 // Stored (free) energy: W = α_v θ²/(2n) + (α_d/2m) Σ ω (e^d − e^dp)² V.
+//   (P6) t = ∂W/∂e needs the term −(α_d/m) q ω ξ, since ∂θ/∂e couples every bond. With a full family q = 0:
+//        Σ ω ξ e^d V = 0 by the definition of θ, and Σ ω ξ e^dp V = 0 is kept exactly by (P4), since
+//        Σ ω ξ e^dp_{n+1} V = r Σ ω ξ e^dp_n V + (1 − r) Σ ω ξ e^d V. Once bonds break (θ over the intact
+//        bonds, m over all of them, as in Peridigm) q ≠ 0, and without the term the forces are no longer
+//        conservative. q_{n+1} = r q_trial, so it is found with r.
+//   (P7) θ = (n/m) Σ ω ξ (e − e^dp) V over the intact bonds: the elastic volume change. On a full family it
+//        is the θ of lps (Σ ω ξ e^dp V = 0, see (P6)); once bonds break it is not: the bonds that break are
+//        the plastically stretched ones, and a θ of the total extensions would then see the shortened
+//        survivors as a compression that never happened (a fragmenting ring gained 20 % energy that way).
+//   (P8) a bond that breaks takes its share ρ = Σ_broken now ω ξ (e − e^dp) V / m out of θ, which would shift
+//        e^d of every surviving bond by ρξ at once. The step in which bonds break moves the same ρξ into e^dp
+//        of the survivors, so that their elastic state is continuous and breaking only releases energy.
 #include <cstdint>
 #include <vector>
 
@@ -44,23 +57,29 @@ struct LpsPlastic {
   static constexpr bool uses_dilatation = true;
   static constexpr int bond_history_arrays = 1;
 
+  /// (P7) θ measures the elastic volume change: e − e^dp (equal to e's sum on a full family).
+  static double dilatation_extension(const KernelFields& s, std::uint64_t b, double e) { return e - s.bond0[b]; }
+
   static double force_scalar(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                              double e, double xi, double omega) {
     const double theta = s.theta[i];
     const double ed = e - theta * xi / p.dilatation_factor;
+    const double plastic = s.bond0[b] + s.released_extension[i] * xi;  // (P8)
     return omega * s.inverse_m[i] *
-           (p.alpha_volumetric * theta * xi + s.yield_scale[i] * p.alpha_deviatoric * (ed - s.bond0[b]));
+           (p.alpha_volumetric * theta * xi +
+            p.alpha_deviatoric * (s.yield_scale[i] * (ed - plastic) - s.deviatoric_moment[i] * xi));
   }
   static double bond_energy(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                             double e, double xi, double omega) {
-    const double elastic = e - s.theta[i] * xi / p.dilatation_factor - s.bond0[b];
+    const double plastic = s.bond0[b] + s.released_extension[i] * xi;
+    const double elastic = e - s.theta[i] * xi / p.dilatation_factor - plastic;
     return 0.5 * p.alpha_deviatoric * s.inverse_m[i] * omega * elastic * elastic;
   }
   static double point_energy(const MaterialParams& p, const KernelFields& s, std::size_t i) {
     return p.alpha_volumetric * s.theta[i] * s.theta[i] / (2 * p.dilatation_factor);
   }
 
-  /// The return map of every point of the block for the current u and θ: yield_scale r and Δε̄p (P3–P5).
+  /// The return map of every point of the block for the current u and θ: yield_scale r, Δε̄p and q (P3–P6).
   /// Reads the history, writes only this step's scratch, so it may run any number of times.
   static void prepare(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                       MaterialHistory& history, const MaterialParams& p, BlockRange range);

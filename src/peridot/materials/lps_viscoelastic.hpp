@@ -29,6 +29,8 @@ struct ModelContext;
 struct LpsViscoelastic {
   static constexpr bool uses_dilatation = true;
   static constexpr int bond_history_arrays = 2;
+  /// The extension a bond adds to the dilatation sum.
+  static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
 
   /// e^b at the end of the step being computed (V3): a function of this step's e^d.
   static double back_extension(const MaterialParams& p, const KernelFields& s, std::uint64_t b, double ed) {

@@ -49,6 +49,8 @@ struct KernelFields {
   const double* theta = nullptr;        ///< θ
   const double* inverse_m = nullptr;    ///< 1/m
   const double* yield_scale = nullptr;  ///< r of this step's return map (lps_plastic)
+  const double* deviatoric_moment = nullptr;  ///< q of this step (lps_plastic)
+  const double* released_extension = nullptr; ///< ρ of this step: what θ lost to bonds broken now (lps_plastic)
   const double* bond0 = nullptr;        ///< MaterialHistory::bond[0]
   const double* bond1 = nullptr;        ///< MaterialHistory::bond[1]
 };

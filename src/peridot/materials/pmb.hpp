@@ -15,6 +15,8 @@ namespace peridot {
 struct Pmb {
   static constexpr bool uses_dilatation = false;
   static constexpr int bond_history_arrays = 0;
+  /// The extension a bond adds to the dilatation sum.
+  static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
 
   /// Scalar force state t = T⟨ξ⟩·M (N/m⁶) of a bond of reference length xi and extension e.
   static double force_scalar(const MaterialParams& p, const KernelFields&, std::size_t /*point*/, std::uint64_t /*bond*/,

@@ -31,6 +31,8 @@ KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& t
   s.inverse_m = ctx.inverse_weighted_volume.data();
   if (history) {
     s.yield_scale = history->yield_scale.data();
+    s.deviatoric_moment = history->deviatoric_moment.data();
+    s.released_extension = history->released_extension.data();
     s.bond0 = history->bond[0].empty() ? nullptr : history->bond[0].data();
     s.bond1 = history->bond[1].empty() ? nullptr : history->bond[1].data();
   }
@@ -78,29 +80,36 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
   });
 }
 
-void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds) {
+void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
+                        MaterialHistory* history) {
+  const KernelFields fields = kernel_fields(ctx, theta, history);
+  double* released = history ? history->released_extension.data() : nullptr;
   const BondFailure failure(ctx);
   const std::vector<double>& inverse_m = ctx.inverse_weighted_volume;
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
   BondList& bonds = *ctx.bonds;  // broken flags are written when fail_bonds
   theta.resize(ctx.disc->num_points());
-  for_each_block(ctx, [&](auto dim, auto, const MaterialParams& p, BlockRange range) {
+  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
-      double sum = 0;
+      double sum = 0, lost = 0;
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
+        const double term = influence(p.influence, g.xi, p.horizon) * g.xi * model.dilatation_extension(fields, b, g.e) *
+                            neighbor_volume(ctx, i, j, g.xi);
         if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, range, j))) {
           bonds.broken[b] = 1;
+          lost += term;
           continue;
         }
-        sum += influence(p.influence, g.xi, p.horizon) * g.xi * g.e * neighbor_volume(ctx, i, j, g.xi);
+        sum += term;
       }
       theta[i] = p.dilatation_factor * sum * inverse_m[i];
+      if (released && fail_bonds) released[i] = lost * inverse_m[i];
     }
   });
 }

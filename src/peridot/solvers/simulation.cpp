@@ -79,7 +79,8 @@ void Simulation::initialize() {
 void Simulation::compute_forces() {
   // Bond failure is checked in the first pass that computes every bond's stretch (on u^{n+1}, before any
   // force uses the bond).
-  if (any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation, any_damage_);
+  if (any_dilatation_)
+    compute_dilatation(model_, state_.u, state_.dilatation, any_damage_, &state_.history);
   if (history_arrays_ > 0) prepare_history(model_, state_.u, state_.dilatation, state_.history);
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && !any_dilatation_,
                          &state_.history);
@@ -168,7 +169,7 @@ void Simulation::step() {
 void Simulation::update_output_fields() {
   compute_damage(model_, state_.damage);
   if (any_damage_) label_fragments(bonds_, disc_.input_id, state_.fragment);
-  if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation);
+  if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation, false, &state_.history);
 }
 
 Totals Simulation::totals() {

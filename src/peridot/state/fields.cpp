@@ -14,6 +14,8 @@ void State::resize(std::size_t n) {
   history.dissipation.assign(n, 0.0);
   history.yield_scale.assign(n, 1.0);
   history.plastic_strain_increment.assign(n, 0.0);
+  history.deviatoric_moment.assign(n, 0.0);
+  history.released_extension.assign(n, 0.0);
 }
 
 void State::size_history(std::size_t nnz, int arrays) {

@@ -64,6 +64,8 @@ struct MaterialHistory {
   std::vector<double> dissipation;            ///< dissipated energy density since t = 0 (J/m³)
   std::vector<double> yield_scale;            ///< this step: t^d = r t^d_trial, r ∈ (0, 1] (lps_plastic)
   std::vector<double> plastic_strain_increment;  ///< this step: Δε̄p (lps_plastic)
+  std::vector<double> deviatoric_moment;      ///< this step: q = Σ ω ξ (e^d − e^dp) V / m over intact bonds (lps_plastic)
+  std::vector<double> released_extension;     ///< this step: Σ ω ξ e V / m over the bonds that broke in it
   bool has_bond_history() const { return !bond[0].empty(); }
 };
 
