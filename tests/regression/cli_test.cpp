@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <utility>
 #include <sstream>
 #include <string>
 
@@ -136,16 +137,19 @@ TEST(Cli, BlowUpExitsThreeNamingStepTimeAndPoint) {
   EXPECT_NE(read_file(dir / "out" / "run.log").find("error: non-finite"), std::string::npos);
 }
 
-// Same deck, 1 and 2 threads: every output byte identical (Exodus frames and history).
+// Same deck, 1 and 2 threads: every output byte identical (Exodus frames and history). The second deck
+// has two inelastic blocks (plastic flow, viscous relaxation, bonds breaking across their interface).
 TEST(Cli, OneAndTwoThreadsGiveIdenticalBits) {
-  const fs::path deck = source / "tests" / "regression" / "decks" / "exodus_small.yaml";
-  const fs::path one = scratch("threads1"), two = scratch("threads2");
-  ASSERT_EQ(run("run -q -t 1 -o " + one.string() + " " + deck.string()).status, 0);
-  ASSERT_EQ(run("run -q -t 2 -o " + two.string() + " " + deck.string()).status, 0);
-  for (const char* file : {"small.e", "history.csv"}) {
-    const std::string a = read_file(one / file), b = read_file(two / file);
-    EXPECT_FALSE(a.empty()) << file;
-    EXPECT_TRUE(a == b) << file << " differs between 1 and 2 threads";
+  for (const auto& [deck_name, exodus] : {std::pair{"exodus_small.yaml", "small.e"}, {"inelastic_small.yaml", "inelastic.e"}}) {
+    const fs::path deck = source / "tests" / "regression" / "decks" / deck_name;
+    const fs::path one = scratch(std::string("threads1_") + exodus), two = scratch(std::string("threads2_") + exodus);
+    ASSERT_EQ(run("run -q -t 1 -o " + one.string() + " " + deck.string()).status, 0);
+    ASSERT_EQ(run("run -q -t 2 -o " + two.string() + " " + deck.string()).status, 0);
+    for (const char* file : {exodus, "history.csv"}) {
+      const std::string a = read_file(one / file), b = read_file(two / file);
+      EXPECT_FALSE(a.empty()) << deck_name << " " << file;
+      EXPECT_TRUE(a == b) << deck_name << " " << file << " differs between 1 and 2 threads";
+    }
   }
 }
 

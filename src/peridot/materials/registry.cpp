@@ -73,7 +73,10 @@ One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v
   forces, one more loop over the bonds than pmb.
 - m is computed once from the bonds at set-up (bonds across a pre-crack are not among them) and is not
   updated when bonds break; broken bonds drop out of θ, the forces and the energy.
-- Linear elastic up to bond failure; no plasticity or viscosity. No surface correction is applied: points
+- On a damaged family (m over all bonds, θ over the intact ones, as in Peridigm) the force is not the exact
+  gradient of W: it lacks the term −(15G/m) q ω ξ, q = Σ ω ξ e^d V / m, that lps_plastic includes.
+- Linear elastic up to bond failure; for plasticity or viscosity see lps_plastic and lps_viscoelastic. No
+  surface correction is applied: points
   within δ of a free surface have one-sided families and respond stiffer to stretching along the surface
   (measured in 2D plane stress, δ = 3.015Δx: the outer row stores 1.35 times the classical energy of a
   uniaxial stress, and a bar 16 points wide is 10 % stiffer than E).
@@ -105,34 +108,41 @@ the yield surface is the backward-Euler radial return of Mitchell's algorithm, s
 The volumetric response stays elastic. Linear isotropic hardening is optional, with the equivalent plastic
 strain defined through the plastic work; critical-stretch damage, when given, acts on the total stretch.)",
       .equations = R"(Notation as on the lps page (n, α_v, α_d = 3, 3K, 15G in 3D; 2, 2K′, 8G in 2D); e^dp the plastic
-extension of a bond, ε̄p the equivalent plastic strain of a point, σ_Y = σ_y + H ε̄p.
+extension of a bond, ε̄p the equivalent plastic strain of a point, σ_Y = σ_y + H ε̄p; sums run over the
+point's intact bonds unless said otherwise.
 
-- (P1) t = (ω/m)[α_v θ ξ + α_d (e^d − e^dp)], e^d = e − θξ/n
-- (P2) yield function f = ‖t^d‖²/2 − ψ0, ‖t^d‖² = Σ (t^d)² V over the intact bonds; √(2ψ0) = k σ_Y
-- (P3) trial state t^d_tr = α ω (e^d_{n+1} − e^dp_n), α = α_d/m; the step is elastic when ‖t^d_tr‖ ≤ k σ_Y,n
+- (P1) t = (ω/m)[α_v θ ξ + α_d (e^d − e^dp − q ξ)], e^d = e − θξ/n, q = Σ ω ξ (e^d − e^dp) V / m
+- (P2) yield function f = ‖t^d‖²/2 − ψ0, t^d = α ω (e^d − e^dp), α = α_d/m, ‖t^d‖² = Σ (t^d)² V; √(2ψ0) = k σ_Y
+- (P3) trial state t^d_tr = α ω (e^d_{n+1} − e^dp_n); the step is elastic when ‖t^d_tr‖ ≤ k σ_Y,n
 - (P4) otherwise t^d_{n+1} = r t^d_tr, r = kσ_Y,n+1/‖t^d_tr‖, and e^dp_{n+1} = e^dp_n + (1 − r)(e^d_{n+1} − e^dp_n)
   (for ω = 1 exactly Mitchell's Δλ = (‖t^d_tr‖/√(2ψ0) − 1)/α; for another ω the flow rule is ė^dp = λ t^d/ω,
   which keeps the return radial)
 - (P5) plastic work ΔW_p = Σ t^d_{n+1} Δe^dp V = r(1 − r)S/α, S = Σ (t^d_tr)²/ω V, and σ_Y,n+1 Δε̄p = ΔW_p,
   solved in closed form: Δε̄p = g(1 − kσ_Y,n/‖t^d_tr‖)/(1 + gkH/‖t^d_tr‖), g = kS/(α‖t^d_tr‖)
-- (C1) 3D calibration, any deviatoric state at von Mises yield: ψ0 = 10π σ_Y² ∫ω²ξ⁴dξ / m², which is
-  25σ_Y²/(8πδ⁵) for ω = 1
-- (C2) plane stress, calibrated in in-plane uniaxial stress: ψ0 = 2πh σ_Y² ∫ω²ξ³dξ / m² (2σ_Y²/(πhδ⁴) for ω = 1)
-- (C3) plane strain, calibrated in in-plane pure shear: ψ0 = (8π/3)h σ_Y² ∫ω²ξ³dξ / m² (8σ_Y²/(3πhδ⁴) for ω = 1)
+- (P6) the q term makes t = ∂W/∂e exactly; q = 0 on a full family, where (P4) keeps Σ ω ξ e^dp V = 0
+- (P7) θ = (n/m) Σ ω ξ (e − e^dp) V, the elastic volume change (the lps θ on a full family)
+- (P8) in the step a bond breaks, the survivors' e^dp grows by ρξ, ρ = Σ_(broken now) ω ξ (e − e^dp) V / m,
+  the share of θ the broken bonds take with them, so that the survivors' elastic state is continuous
+- (C) calibration, per point over its whole reference family (like m): k² = c Σ ω² ξ² V / m², which is ψ0 at
+  von Mises yield with the direction average of the deviatoric state: c = 5 in 3D (any deviatoric state;
+  25σ_Y²/(8πδ⁵) for ω = 1 in the continuum), c = 2 in plane stress (in-plane uniaxial stress) and c = 8/3 in
+  plane strain (in-plane pure shear)
 
-In (C1)–(C3) m is the weighted volume of a full family (the integral), as in Peridigm. The stored energy is
-W = α_v θ²/(2n) + (α_d/2m) Σ ω (e^d − e^dp)² V; the history output `dissipation` is W_p per unit volume
-and `equivalent_plastic_strain` is ε̄p.)",
+The stored energy is W = α_v θ²/(2n) + (α_d/2m) Σ ω (e^d − e^dp)² V; the history output `dissipation` is
+W_p per unit volume and `equivalent_plastic_strain` is ε̄p.)",
       .restrictions = R"(- Plasticity is deviatoric only: a pure volumetric strain never yields (no pressure dependence, no
   tension cut-off).
-- The yield calibration assumes a full family: points within δ of a free surface have a truncated family
-  and yield at a different load (no surface correction is applied).
+- The yield calibration uses each point's own family, but a point within δ of a free surface has a
+  truncated, one-sided family whose deviatoric state differs from the interior's (no surface correction).
 - In 2D the deviatoric norm sees the in-plane deviator only; the constant is exact for in-plane uniaxial
   stress (plane stress) or in-plane pure shear (plane strain), not for every stress state.
 - One more pass over the bonds per step than lps (the return map), and one more after the force (the commit);
   8 bytes of plastic extension and 4 bytes of partner-bond index per bond.
 - Damage, when given, uses the total stretch (the plastic extension is not subtracted), as in Peridigm;
-  m is not updated when bonds break.)",
+  m is not updated when bonds break. Unlike Peridigm, θ sums the elastic extensions e − e^dp, a breaking
+  bond's share of θ moves into the survivors' plastic extension, and the force keeps the q term, so that a
+  damaged family stays conservative and breaking bonds only release energy (P6–P8 in the header
+  materials/lps_plastic.hpp; without them a fragmenting ring gained 20 % energy).)",
       .further_references = {"Mitchell, A nonlocal, ordinary, state-based plasticity model for peridynamics, SAND2011-3166 (2011)"},
       .example = R"(materials:
   aluminium:
@@ -170,7 +180,8 @@ is D per unit volume.)",
 - The time step limit is that of lps (the glassy stiffness); the viscous part is unconditionally stable.
 - 16 bytes of history (back extension and last deviatoric extension) and 4 bytes of partner-bond index per
   bond, and one more pass over the bonds after the force (the commit).
-- Damage, when given, uses the total stretch; m is not updated when bonds break.)",
+- Damage, when given, uses the total stretch; m is not updated when bonds break, and, as for lps, the force
+  on a damaged family is not the exact gradient of W.)",
       .further_references = {"Mitchell, A non-local, ordinary-state-based viscoelasticity model for peridynamics, SAND2011-8064 (2011)"},
       .example = R"(materials:
   polymer:
