@@ -6,10 +6,13 @@
 //    lateral strain is iterated until the lateral stress vanishes): yield at σ_y, hardening slope
 //    E_t = EH/(E + H), elastic unloading with E, permanent strain and ε̄p as in classical J2;
 //  - a pure volumetric strain never yields;
+//  - a bar pulled slowly through the whole solver (grips, damping, free lateral faces): elastic slope,
+//    yield, hardening, elastic unloading and permanent strain as in classical J2;
 //  - a random loading history never dissipates a negative amount, and the work done equals stored
 //    energy plus plastic work (second law and energy balance of the integrator).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -307,6 +310,131 @@ TEST(LpsPlasticDissipation, RandomLoadingNeverDissipatesNegativelyAndBalancesWor
   EXPECT_LT(fine_error, 0.7 * coarse_error);
   std::printf("random walk: work %.6g J/m^3, stored %.6g, plastic %.6g; mismatch %.3g (step 2e-4), %.3g (step 1e-4)\n",
               coarse.work, coarse.stored, coarse.dissipated, coarse_error / coarse.work, fine_error / fine.work);
+}
+
+
+// ---------------------------------------------------------------------------------------------------
+// A bar pulled slowly through the whole solver: grips of two layers at each end, the right grip's axial
+// displacement prescribed (loaded, then unloaded), lateral faces free, mass damping to stay quasi-static.
+// Stress = the axial force the left half transmits to the right half, −Σ_{x_i > L/2} f_i V_i (the bonds
+// within the right half cancel pairwise), over the cross-section: exact at every instant, free of the
+// damping and inertia forces that the grip reaction includes. Strain = stretch of the gauge between two
+// lattice planes near L/4 and 3L/4 (mean axial displacements); ε̄p = mean over the mid cross-section.
+struct BarPoint {
+  double strain, stress, plastic_strain;
+};
+
+std::vector<BarPoint> pull_bar(const testing::BlockSetup& s, double max_strain, double end_strain, int steps) {
+  Problem problem = testing::box_problem(s);
+  const double L = s.cells[0] * s.spacing, grip = 2 * s.spacing;
+  NodeSetSpec left, right;
+  left.name = "left";
+  left.shape = testing::box_shape({-1, -1, -1}, {grip, 1, 1});
+  right.name = "right";
+  right.shape = testing::box_shape({L - grip, -1, -1}, {1, 1, 1});
+  problem.node_sets = {left, right};
+  const double dt = 0.8 * Simulation(problem).stable_time_step();
+  problem.solver.time_step = dt;
+  problem.solver.num_steps = steps;
+  // Axial grip displacement: up to max_strain over the first 3/4 of the run, then back to end_strain.
+  const double T1 = 0.75 * steps * dt, T2 = steps * dt, span = L - grip;
+  const std::string ramp = "(t <= " + std::to_string(T1) + " ? t / " + std::to_string(T1) + " * " +
+                           std::to_string(max_strain * span) + " : " + std::to_string(max_strain * span) + " - (t - " +
+                           std::to_string(T1) + ") / " + std::to_string(T2 - T1) + " * " +
+                           std::to_string((max_strain - end_strain) * span) + ")";
+  BoundaryConditionSpec hold, pull;
+  hold.node_set = "left";
+  hold.component = 0;
+  hold.value = {"0", {}, false};
+  pull.node_set = "right";
+  pull.component = 0;
+  pull.value = {ramp, {}, true};
+  problem.boundary_conditions = {hold, pull};
+  // Damping near the bar's first axial frequency π c/L, so that the loading stays quasi-static.
+  const double E = 9 * s.bulk_modulus * s.shear_modulus / (3 * s.bulk_modulus + s.shear_modulus);
+  problem.solver.damping = std::numbers::pi * std::sqrt(E / s.density) / L;
+  Simulation sim(problem);
+  sim.initialize();
+  const Discretization& disc = sim.discretization();
+  // Lattice planes x = (k + ½)Δx.
+  auto plane = [&](double fraction) { return (std::floor(fraction * s.cells[0]) + 0.5) * s.spacing; };
+  std::vector<std::size_t> near, far, middle;
+  for (std::size_t i = 0; i < disc.num_points(); ++i) {
+    if (std::abs(disc.x(i, 0) - plane(0.25)) < 0.25 * s.spacing) near.push_back(i);
+    if (std::abs(disc.x(i, 0) - plane(0.75)) < 0.25 * s.spacing) far.push_back(i);
+    if (std::abs(disc.x(i, 0) - plane(0.5)) < 0.25 * s.spacing) middle.push_back(i);
+  }
+  EXPECT_EQ(near.size(), static_cast<std::size_t>(s.cells[1] * s.cells[2]));
+  auto mean = [&](const std::vector<std::size_t>& set, auto value) {
+    double sum = 0;
+    for (std::size_t i : set) sum += value(i);
+    return sum / static_cast<double>(set.size());
+  };
+  const double gauge = plane(0.75) - plane(0.25);
+  const double area = s.cells[1] * s.cells[2] * s.spacing * s.spacing;
+  std::vector<BarPoint> out;
+  const State& state = sim.state();
+  for (int n = 1; n <= steps; ++n) {
+    sim.step();
+    if (n % 25 != 0) continue;
+    double transmitted = 0;
+    for (std::size_t i = 0; i < disc.num_points(); ++i)
+      if (disc.x(i, 0) > 0.5 * L) transmitted -= state.force(i, 0) * disc.volume[i];
+    const double strain = (mean(far, [&](std::size_t i) { return state.u(i, 0); }) -
+                           mean(near, [&](std::size_t i) { return state.u(i, 0); })) / gauge;
+    out.push_back({strain, transmitted / area, mean(middle, [&](std::size_t i) { return state.history.plastic_strain[i]; })});
+  }
+  return out;
+}
+
+// 30 × 10 × 10 points, δ = 3.015Δx, 3000 steps (about 70 s on one core): measured elastic slope 1.003 E,
+// yield point (bilinear fit) 1.004 σ_y, hardening slope 1.015 E_t, unloading slope 1.007 E, zero-stress
+// strain after unloading 0.5 % above the classical permanent strain.
+TEST(LpsPlasticBar, QuasiStaticTensionThroughTheSolver) {
+  testing::BlockSetup s;
+  s.model = ModelKind::lps_plastic;
+  s.cells[0] = 30, s.cells[1] = s.cells[2] = 10;
+  s.yield_stress = yield_stress;
+  const double K = s.bulk_modulus, G = s.shear_modulus, E = 9 * K * G / (3 * K + G);
+  s.hardening_modulus = 0.2 * E;
+  const double H = s.hardening_modulus, tangent = E * H / (E + H), yield_strain = yield_stress / E;
+  const std::vector<BarPoint> curve = pull_bar(s, 4 * yield_strain, 2 * yield_strain, 3000);
+  const std::size_t peak = std::max_element(curve.begin(), curve.end(), [](auto& a, auto& b) { return a.strain < b.strain; }) - curve.begin();
+  auto slope = [&](std::size_t a, std::size_t b) { return (curve[b].stress - curve[a].stress) / (curve[b].strain - curve[a].strain); };
+  auto at_strain = [&](double strain, std::size_t from, std::size_t to) {  // first sample at or beyond strain
+    for (std::size_t k = from; k < to; ++k)
+      if (curve[k].strain >= strain) return k;
+    return to - 1;
+  };
+  // Elastic loading between 0.2 and 0.8 ε_y.
+  EXPECT_NEAR(slope(at_strain(0.2 * yield_strain, 0, peak), at_strain(0.8 * yield_strain, 0, peak)), E, 0.02 * E)
+      << "elastic slope";
+  // Yield point: the intersection of the elastic line and the hardening line (bilinear fit), since surface
+  // points of the section, whose families are one-sided, start to yield earlier (at 0.87 σ_y).
+  const double elastic = slope(at_strain(0.2 * yield_strain, 0, peak), at_strain(0.8 * yield_strain, 0, peak));
+  const std::size_t a = at_strain(2 * yield_strain, 0, peak);
+  const double hardening = slope(a, peak);
+  const double yield_point = elastic * (curve[a].stress - hardening * curve[a].strain) / (elastic - hardening);
+  EXPECT_NEAR(yield_point, yield_stress, 0.03 * yield_stress) << "yield point of the bilinear fit";
+  EXPECT_NEAR(hardening, tangent, 0.03 * tangent) << "hardening slope";
+  std::size_t onset = 0;
+  while (onset < peak && curve[onset].plastic_strain == 0) ++onset;
+  EXPECT_GT(curve[onset].stress, 0.8 * yield_stress) << "first yield in the mid-section (a surface point)";
+  // Plastic strain at the peak: ε − σ/E.
+  const BarPoint& top = curve[peak];
+  EXPECT_NEAR(top.plastic_strain, top.strain - top.stress / E, 0.03 * top.plastic_strain) << "plastic strain at the peak";
+  // Unloading: elastic with E, and the strain at zero stress is the permanent strain of classical J2.
+  const std::size_t early = std::min(peak + 2, curve.size() - 1), last = curve.size() - 1;
+  EXPECT_NEAR(slope(early, last), E, 0.02 * E) << "unloading slope";
+  EXPECT_EQ(curve[last].plastic_strain, curve[early].plastic_strain) << "unloading must stay elastic";
+  const double zero_stress_strain = curve[last].strain - curve[last].stress / slope(early, last);
+  const double classical_peak_stress = yield_stress + tangent * (top.strain - yield_strain);
+  const double permanent = top.strain - classical_peak_stress / E;
+  EXPECT_NEAR(zero_stress_strain, permanent, 0.03 * permanent) << "permanent strain";
+  std::printf("bar: elastic slope %.4g E, yield point %.4g σ_y (first surface yield %.4g σ_y), hardening slope "
+              "%.4g E_t, unloading %.4g E, permanent strain %.4g (classical %.4g)\n",
+              elastic / E, yield_point / yield_stress, curve[onset].stress / yield_stress, hardening / tangent,
+              slope(early, last) / E, zero_stress_strain, permanent);
 }
 
 }  // namespace
