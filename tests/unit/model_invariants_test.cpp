@@ -148,15 +148,13 @@ TEST_P(ModelInvariants, LinearAndAngularMomentumAreConserved) {
   }
 }
 
-TEST_P(ModelInvariants, ForceIsMinusEnergyGradient) {
-  Simulation sim(testing::box_problem(setup_for(GetParam())));
-  randomize_history(sim, 3);
+/// f = −∂W/∂u by central differences at interior, edge and corner points (every sort of family).
+void expect_force_is_minus_energy_gradient(Simulation& sim) {
   const Discretization& disc = sim.discretization();
   const VectorField u = random_displacement(disc, 2e-3 * 1e-3, 13);
   const Forces f = evaluate(sim, u);
   const double h = 1e-6 * 1e-3;  // central difference step (m)
   const double scale = max_abs(f.force_times_volume);
-  // Interior, edge and corner points: every sort of family.
   for (std::size_t i : {std::size_t{0}, disc.num_points() / 2, disc.num_points() / 3, disc.num_points() - 1}) {
     for (int d = 0; d < disc.dimension; ++d) {
       VectorField plus = u, minus = u;
@@ -166,6 +164,12 @@ TEST_P(ModelInvariants, ForceIsMinusEnergyGradient) {
       EXPECT_NEAR(f.force_times_volume[3 * i + d], -gradient, 1e-6 * scale) << "point " << i << " component " << d;
     }
   }
+}
+
+TEST_P(ModelInvariants, ForceIsMinusEnergyGradient) {
+  Simulation sim(testing::box_problem(setup_for(GetParam())));
+  randomize_history(sim, 3);
+  expect_force_is_minus_energy_gradient(sim);
 }
 
 // With broken bonds (both directions of a random tenth of the pairs) and an arbitrary, not deviatoric,
@@ -187,20 +191,7 @@ TEST_P(DamagedModelInvariants, ForceIsMinusEnergyGradientWithBrokenBonds) {
       for (std::uint64_t c = bonds.offsets[j]; c < bonds.offsets[j + 1]; ++c)
         if (bonds.neighbors[c] == i) bonds.broken[c] = 1;
     }
-  const Discretization& disc = sim.discretization();
-  const VectorField u = random_displacement(disc, 2e-3 * 1e-3, 13);
-  const Forces f = evaluate(sim, u);
-  const double h = 1e-6 * 1e-3;
-  const double scale = max_abs(f.force_times_volume);
-  for (std::size_t i : {std::size_t{0}, disc.num_points() / 2, disc.num_points() / 3, disc.num_points() - 1}) {
-    for (int d = 0; d < disc.dimension; ++d) {
-      VectorField plus = u, minus = u;
-      plus(i, d) += h;
-      minus(i, d) -= h;
-      const double gradient = (evaluate(sim, plus).energy - evaluate(sim, minus).energy) / (2 * h);
-      EXPECT_NEAR(f.force_times_volume[3 * i + d], -gradient, 1e-6 * scale) << "point " << i << " component " << d;
-    }
-  }
+  expect_force_is_minus_energy_gradient(sim);
 }
 
 const Case cases[] = {
