@@ -1,11 +1,14 @@
 // Explicit-dynamics benchmark: a simple-cubic block of points (horizon 3.015 spacings, 122 bonds per
-// interior point), PMB or LPS, a smooth initial velocity field, N velocity-Verlet steps. Prints one JSON
+// interior point), PMB, LPS or the inelastic LPS models, a smooth initial velocity field, N velocity-Verlet
+// steps. Prints one JSON
 // line: points, directed bonds, neighbour-build and step times, bond updates per second per core, bytes
 // per bond (with the breakdown) and peak resident memory. bench/compare_lammps.py runs LAMMPS on the
 // identical problem (bench/lammps/run_lammps.py) and prints the ratios.
 //
 //   bench_explicit --model lps --n 58 58 60 --steps 200 [--threads 1] [--critical-stretch 1e-4]
 //                  [--dump final.txt]
+//   --model lps_plastic [--yield-stress 1e6]   (a small σ_y makes every point flow: the costly case)
+//   --model lps_viscoelastic                   (λ_i = 0.5, τ_b = 10 µs)
 #include <omp.h>
 #include <sys/resource.h>
 
@@ -33,6 +36,7 @@ struct Options {
   double dt = 0;  // 0: 0.8 × stable
   double v0 = 1e-3;
   double critical_stretch = 0;  // 0: no damage
+  double yield_stress = 250e6;  // lps_plastic
   int threads = 1;
   std::string dump;
 };
@@ -49,6 +53,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--dt") o.dt = std::stod(next());
     else if (a == "--v0") o.v0 = std::stod(next());
     else if (a == "--critical-stretch") o.critical_stretch = std::stod(next());
+    else if (a == "--yield-stress") o.yield_stress = std::stod(next());
     else if (a == "--threads") o.threads = std::stoi(next());
     else if (a == "--dump") o.dump = next();
     else {
@@ -72,9 +77,16 @@ Problem benchmark_problem(const Options& o) {
   const double E = 200e9, nu = 0.25, K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu));
   MaterialSpec m;
   m.name = "steel";
-  m.model = o.model == "lps" ? ModelKind::lps : ModelKind::pmb;
+  m.model = o.model == "lps"                ? ModelKind::lps
+            : o.model == "lps_plastic"      ? ModelKind::lps_plastic
+            : o.model == "lps_viscoelastic" ? ModelKind::lps_viscoelastic
+                                            : ModelKind::pmb;
   // LAMMPS peri/lps weighs bonds by 1/|ξ| (the scale of ω cancels in LPS, so δ/|ξ| is the same model).
-  m.influence = m.model == ModelKind::lps ? InfluenceKind::inverse_distance : InfluenceKind::constant;
+  m.influence = m.model == ModelKind::pmb ? InfluenceKind::constant : InfluenceKind::inverse_distance;
+  m.yield_stress = o.yield_stress;
+  m.hardening_modulus = 1e9;
+  m.relaxing_fraction = 0.5;
+  m.relaxation_time = 1e-5;
   m.density = 7800;
   m.elastic = {K, G, E, nu};
   if (o.critical_stretch > 0) {
@@ -139,8 +151,11 @@ int main(int argc, char** argv) {
   const double points = static_cast<double>(sim.discretization().num_points());
   const double bonds = static_cast<double>(sim.bonds().num_bonds());
   const double updates_per_s_core = bonds * o.steps / run_s / o.threads;
-  // Bond storage: neighbour index (4 B), broken flag (1 B), CSR offsets (8 B per point).
+  // Bond storage: neighbour index (4 B), broken flag (1 B), CSR offsets (8 B per point); inelastic models add
+  // 8 B per history array and 4 B of partner-bond index.
   const double neighbor_bytes = 4, state_bytes = 1, offset_bytes = 8 * (points + 1) / bonds;
+  const int history_arrays = sim.model().bond_history_arrays();
+  const double history_bytes = history_arrays > 0 ? 8.0 * history_arrays + 4 : 0.0;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   std::printf(
@@ -148,12 +163,13 @@ int main(int argc, char** argv) {
       "\"threads\": %d, \"dt\": %.17g, \"setup_s\": %.4f, \"loop_s\": %.4f, \"loop_cpu_s\": %.4f, "
       "\"bond_updates_per_s_per_core\": %.4g, \"bond_updates_per_cpu_s\": %.4g, "
       "\"bytes_per_bond\": %.3f, \"bytes_per_bond_breakdown\": {\"neighbor_index\": %.0f, \"broken_flag\": %.0f, "
-      "\"csr_offsets\": %.3f}, \"peak_rss_mib\": %.1f, \"kinetic_energy\": %.17g, \"strain_energy\": %.17g, "
-      "\"max_damage\": %.6g}\n",
+      "\"csr_offsets\": %.3f, \"history_and_partner_index\": %.0f}, \"peak_rss_mib\": %.1f, \"kinetic_energy\": %.17g, "
+      "\"strain_energy\": %.17g, \"dissipated_energy\": %.17g, \"max_damage\": %.6g}\n",
       o.model.c_str(), points, bonds, o.steps, o.threads, sim.time_step(), setup_s, run_s, run_cpu_s, updates_per_s_core,
       bonds * o.steps / run_cpu_s,
-      neighbor_bytes + state_bytes + offset_bytes, neighbor_bytes, state_bytes, offset_bytes,
-      static_cast<double>(usage.ru_maxrss) / 1024.0, totals.kinetic_energy, totals.strain_energy, totals.max_damage);
+      neighbor_bytes + state_bytes + offset_bytes + history_bytes, neighbor_bytes, state_bytes, offset_bytes, history_bytes,
+      static_cast<double>(usage.ru_maxrss) / 1024.0, totals.kinetic_energy, totals.strain_energy,
+      totals.dissipated_energy, totals.max_damage);
 
   if (!o.dump.empty()) {  // final state by lattice index, for comparison with LAMMPS
     std::ofstream out(o.dump);
