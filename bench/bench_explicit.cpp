@@ -9,6 +9,7 @@
 //                  [--dump final.txt]
 //   --model lps_plastic [--yield-stress 1e6]   (a small σ_y makes every point flow: the costly case)
 //   --model lps_viscoelastic                   (λ_i = 0.5, τ_b = 10 µs)
+//   --lammps-failure-order   a bond failing in a step still carries that step's force, as in LAMMPS PERI
 #include <omp.h>
 #include <sys/resource.h>
 
@@ -38,6 +39,7 @@ struct Options {
   double critical_stretch = 0;  // 0: no damage
   double yield_stress = 250e6;  // lps_plastic
   int threads = 1;
+  bool lammps_failure_order = false;
   std::string dump;
 };
 
@@ -54,6 +56,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--v0") o.v0 = std::stod(next());
     else if (a == "--critical-stretch") o.critical_stretch = std::stod(next());
     else if (a == "--yield-stress") o.yield_stress = std::stod(next());
+    else if (a == "--lammps-failure-order") o.lammps_failure_order = true;
     else if (a == "--threads") o.threads = std::stoi(next());
     else if (a == "--dump") o.dump = next();
     else {
@@ -139,6 +142,7 @@ int main(int argc, char** argv) {
 
   const auto t_setup = std::chrono::steady_clock::now();
   Simulation sim(problem);  // discretization, neighbour build, materials
+  sim.model().bond_failure_after_force = o.lammps_failure_order;
   const double setup_s = seconds_since(t_setup);
   sim.initialize();
   const auto t_run = std::chrono::steady_clock::now();
@@ -172,14 +176,20 @@ int main(int argc, char** argv) {
       totals.dissipated_energy, totals.max_damage);
 
   if (!o.dump.empty()) {  // final state by lattice index, for comparison with LAMMPS
+    // The last column is the fraction of a point's bonds that are broken, unweighted: LAMMPS's damage/atom
+    // (1 − Σ_intact V_j / Σ_all V_j with the full volumes, all equal on this lattice).
     std::ofstream out(o.dump);
     out.precision(17);
     const Discretization& disc = sim.discretization();
+    const BondList& bonds = sim.bonds();
     for (std::size_t i = 0; i < disc.num_points(); ++i) {
+      std::size_t broken = 0;
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) broken += bonds.broken[b];
+      const double all = static_cast<double>(bonds.offsets[i + 1] - bonds.offsets[i]);
       out << disc.input_id[i];
       for (int d = 0; d < 3; ++d) out << ' ' << disc.x(i, d) + sim.state().u(i, d);
       for (int d = 0; d < 3; ++d) out << ' ' << sim.state().v(i, d);
-      out << '\n';
+      out << ' ' << (all > 0 ? static_cast<double>(broken) / all : 0.0) << '\n';
     }
   }
   return 0;

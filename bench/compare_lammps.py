@@ -8,6 +8,12 @@ prints bond updates per second per core, the ratios, bytes per bond, peak memory
 answers agree (kinetic energy and displacements of every point).
 
     /usr/bin/python3 bench/compare_lammps.py [--sizes 37,37,37 58,58,60] [--models pmb lps] [--steps 200]
+    /usr/bin/python3 bench/compare_lammps.py --critical-stretch 1e-3 --v0 5     # with bonds breaking
+
+With --critical-stretch both codes break bonds (s0 constant; LAMMPS α = 0). LAMMPS checks a bond after
+using its force in a step, Peridot before: Peridot runs twice, in its own order (the timed run) and in
+LAMMPS's order (`--lammps-failure-order`), and the script compares the broken bonds of both with LAMMPS's
+(the fraction of broken bonds of every point, summed: the number of broken bonds over the family size).
 """
 import argparse
 import json
@@ -43,7 +49,11 @@ def main():
     p.add_argument("--steps", type=int, default=200)
     p.add_argument("--bench", default=os.path.join(HERE, "..", "build", "bench", "bench_explicit"))
     p.add_argument("--lmp", default="lmp")
+    p.add_argument("--critical-stretch", type=float, default=None)
+    p.add_argument("--v0", type=float, default=None, help="initial velocity amplitude, m/s (default as run_lammps.py)")
     a = p.parse_args()
+    damage = ["--critical-stretch", repr(a.critical_stretch)] if a.critical_stretch else []
+    velocity = ["--v0", repr(a.v0)] if a.v0 else []
     work = tempfile.mkdtemp(prefix="peridot_vs_lammps_")
     spacing, volume = 1e-3, 1e-9
     dt = 0.8 * run_lammps.stable_dt(spacing)  # both codes take this Δt (full volumes, as LAMMPS)
@@ -54,19 +64,34 @@ def main():
             tag = f"{model}_{'x'.join(n)}"
             peridot_dump = os.path.join(work, tag + ".peridot")
             pd = run_json([a.bench, "--model", model, "--n", *n, "--steps", str(a.steps), "--threads", "1",
-                           "--dt", repr(dt), "--dump", peridot_dump])
+                           "--dt", repr(dt), "--dump", peridot_dump, *damage, *velocity])
+            if damage:  # the same run in LAMMPS's failure order
+                run_json([a.bench, "--model", model, "--n", *n, "--steps", str(a.steps), "--threads", "1",
+                          "--dt", repr(dt), "--dump", peridot_dump + ".lammps_order", *damage, *velocity,
+                          "--lammps-failure-order"])
             lammps = []
             for extra in ([], ["--no-contact"]):
                 lammps_dump = os.path.join(work, tag + ".lammps")
                 lammps.append(run_json([sys.executable, os.path.join(HERE, "lammps", "run_lammps.py"), "--model", model,
                                         "--n", *n, "--steps", str(a.steps), "--dt", repr(dt), "--lmp", a.lmp,
-                                        "--workdir", os.path.join(work, tag + "_lmp"), "--dump", lammps_dump, *extra]))
+                                        "--workdir", os.path.join(work, tag + "_lmp"), "--dump", lammps_dump, *extra,
+                                        *damage, *velocity]))
             lm, lm_bonds_only = lammps
             P, L = load_dump(peridot_dump, False), load_dump(lammps_dump, True)
+            # The answers are compared in the same failure order (LAMMPS's, with damage).
+            Q = load_dump(peridot_dump + ".lammps_order", False) if damage else P
             reference = np.round(L[:, 1:4] / spacing) * spacing
-            u_l, u_p = L[:, 1:4] - reference, P[:, 1:4] - reference
+            u_l, u_p = L[:, 1:4] - reference, Q[:, 1:4] - reference
             displacement_error = np.abs(u_p - u_l).max() / np.abs(u_l).max()
-            ke_lammps = lm["kinetic_energy"] * volume
+            # The dump and the energy of the run without contact (the second): with bonds breaking, LAMMPS's
+            # contact pass acts between the pieces and changes the answer, and Peridot has no contact.
+            ke_lammps = lm_bonds_only["kinetic_energy"] * volume
+            ke_peridot = 0.5 * run_lammps.RHO * volume * float(np.sum(Q[:, 4:7] ** 2)) if damage else pd["kinetic_energy"]
+            broken = {}
+            if damage:  # Σ_i (broken fraction of i) in each code: columns 8 of both dumps
+                broken["lammps"] = float(L[:, 7].sum())
+                broken["peridot"] = float(P[:, 7].sum())
+                broken["peridot_lammps_order"] = float(Q[:, 7].sum())
             rows.append({
                 "model": model, "points": pd["points"], "bonds": pd["directed_bonds"],
                 "same_bonds": pd["directed_bonds"] == lm["directed_bonds"],
@@ -74,8 +99,8 @@ def main():
                 "lammps_no_contact": lm_bonds_only["bond_updates_per_s_per_core"],
                 "lammps_cpu_pct": min(lm["cpu_use_pct"], lm_bonds_only["cpu_use_pct"]),
                 "bytes_per_bond": pd["bytes_per_bond"], "peak_rss_mib": pd["peak_rss_mib"],
-                "kinetic_energy_rel_diff": abs(pd["kinetic_energy"] - ke_lammps) / ke_lammps,
-                "displacement_rel_diff": displacement_error})
+                "kinetic_energy_rel_diff": abs(ke_peridot - ke_lammps) / ke_lammps,
+                "displacement_rel_diff": displacement_error, "broken": broken})
             print(json.dumps(rows[-1]), flush=True)
 
     print()
@@ -88,6 +113,12 @@ def main():
               f"{r['kinetic_energy_rel_diff']:8.1e} {r['displacement_rel_diff']:8.1e}")
     print("bond updates per second per core; ratio = Peridot / LAMMPS; 'bonds-only' = LAMMPS without its contact "
           "pass (equal work); ΔKE, Δu = relative difference of the final kinetic energy and displacements")
+    for r in rows:
+        if r["broken"]:
+            b = r["broken"]
+            print(f"{r['model']:5} {r['points']:8.0f}: broken-bond fractions summed over points: LAMMPS {b['lammps']:.6g}, "
+                  f"Peridot {b['peridot']:.6g} ({b['peridot'] / b['lammps'] - 1:+.2%}), Peridot in LAMMPS's failure "
+                  f"order {b['peridot_lammps_order']:.6g} ({b['peridot_lammps_order'] / b['lammps'] - 1:+.2e})")
     if any(r["lammps_cpu_pct"] < 98 for r in rows):
         print("warning: LAMMPS shared its core in some runs (CPU use < 98 %): the machine was busy")
     return 0

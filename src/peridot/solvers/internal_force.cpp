@@ -142,6 +142,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
   const std::uint32_t* reverse = bonds.reverse.data();
   std::uint8_t* broken = ctx.bonds->broken.data();
   const bool any_history = ctx.bond_history_arrays() > 0;
+  const bool after_force = ctx.bond_failure_after_force;
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
     // The partner's bond j → i, for models that keep per-bond history; never read by the others.
@@ -178,8 +179,11 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
                          model.force_scalar(p, fields, j, partner_bond, e, xi, omega);
         double v = volume[j];
         if (partial_volume) v *= partial_volume_factor(xi, p.horizon, ctx.partial_volume_radius);
-        if (fail_bonds && !broken[b] && failure.fails(i, j, e, xi, p.critical_stretch)) broken[b] = 1;
-        const double scale = broken[b] ? 0.0 : t * v / length;
+        const bool was_broken = broken[b];
+        const bool breaks = fail_bonds && !was_broken && failure.fails(i, j, e, xi, p.critical_stretch);
+        if (breaks) broken[b] = 1;
+        const bool carries = !(was_broken || (breaks && !after_force));
+        const double scale = carries ? t * v / length : 0.0;
         fx += scale * dy[0];
         fy += scale * dy[1];
         if constexpr (Dim == 3) fz += scale * dy[2];
@@ -191,7 +195,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, range, j))) {
           broken[b] = 1;
-          return;
+          if (!after_force) return;
         }
         const double omega = influence(p.influence, g.xi, p.horizon);
         const double t = model.force_scalar(p, fields, i, b, g.e, g.xi, omega) +

@@ -22,6 +22,10 @@ struct ModelContext {
   std::vector<std::uint8_t> no_fail;   ///< per point: bonds touching it never break (empty = none)
   /// 1/m per point (set once from compute_weighted_volume): the kernels multiply, never divide, by m.
   std::vector<double> inverse_weighted_volume;
+  /// LAMMPS PERI's order, for the side-by-side benchmark only: a bond that fails in a step still carries
+  /// its force in that step (checked in the force pass, after the force) instead of failing before any
+  /// force uses it. With it, Peridot and LAMMPS break the same bonds (bench/README.md).
+  bool bond_failure_after_force = false;
 
   bool any_dilatation() const;
   bool any_damage() const;

@@ -79,10 +79,11 @@ void Simulation::initialize() {
 void Simulation::compute_forces() {
   // Bond failure is checked in the first pass that computes every bond's stretch (on u^{n+1}, before any
   // force uses the bond).
+  const bool fail_in_force_pass = !any_dilatation_ || model_.bond_failure_after_force;
   if (any_dilatation_)
-    compute_dilatation(model_, state_.u, state_.dilatation, any_damage_, &state_.history);
+    compute_dilatation(model_, state_.u, state_.dilatation, any_damage_ && !fail_in_force_pass, &state_.history);
   if (history_arrays_ > 0) prepare_history(model_, state_.u, state_.dilatation, state_.history);
-  compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && !any_dilatation_,
+  compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && fail_in_force_pass,
                          &state_.history);
 }
 
