@@ -79,5 +79,4 @@ inline double influence(InfluenceKind kind, double xi, double horizon) {
 /// ∫₀^δ ω(ξ) ξ^p dξ in closed form, for the calibration of the constants (p = 2, 3, 4).
 double influence_moment(InfluenceKind kind, double horizon, int p);
 
-
 }  // namespace peridot

@@ -82,7 +82,6 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
 
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
                         MaterialHistory* history) {
-  const KernelFields fields = kernel_fields(ctx, theta, history);
   double* released = history ? history->released_extension.data() : nullptr;
   const BondFailure failure(ctx);
   const std::vector<double>& inverse_m = ctx.inverse_weighted_volume;
@@ -90,6 +89,7 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
   const double* up = u.data();
   BondList& bonds = *ctx.bonds;  // broken flags are written when fail_bonds
   theta.resize(ctx.disc->num_points());
+  const KernelFields fields = kernel_fields(ctx, theta, history);
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
