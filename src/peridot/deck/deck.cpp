@@ -495,6 +495,33 @@ struct Parser {
     });
   }
 
+  void parse_rigid_walls(const Value& v) {
+    std::vector<std::string_view> names;
+    for_each_item(v, "rigid_walls", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("rigid_walls[i]").keys);
+      RigidWallSpec w;
+      w.name = r["name"].text;
+      w.pos = pos;
+      w.point = r["point"].point;
+      w.normal = r["normal"].point;
+      w.speed = r["speed"].number;
+      w.stiffness_factor = r["stiffness_factor"].number;
+      if (r.given("normal")) {
+        if (p.dimension == 2) w.normal.z = 0;
+        if (norm(w.normal) == 0)
+          ctx.error(r["normal"].pos, r.path_of("normal"), "must not be zero (in 2D: its x, y must not both be zero)");
+        else
+          w.normal = (1 / norm(w.normal)) * w.normal;
+      }
+      p.rigid_walls.push_back(std::move(w));
+    });
+    for (const RigidWallSpec& w : p.rigid_walls) {
+      if (std::find(names.begin(), names.end(), w.name) != names.end())
+        ctx.error(w.pos, "rigid_walls", fmt::format("two walls are named '{}'", w.name));
+      names.push_back(w.name);
+    }
+  }
+
   // -- solver and output -------------------------------------------------------------------------
 
   void parse_solver(const Value& v) {
@@ -546,6 +573,7 @@ struct Parser {
     parse_initial_conditions(r["initial_conditions"]);
     parse_boundary_conditions(r["boundary_conditions"]);
     parse_body_forces(r["body_forces"]);
+    parse_rigid_walls(r["rigid_walls"]);
     if (r.given("solver")) parse_solver(r["solver"]);
     if (r.given("output")) {
       parse_output(r["output"]);

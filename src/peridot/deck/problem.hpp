@@ -117,6 +117,17 @@ struct BodyForceSpec {
   std::optional<Expression> component[3];  ///< force density (N/m³) of x, y, z, t
 };
 
+/// A rigid, frictionless plane that the points cannot cross (contact/rigid_wall.hpp): penalty contact on
+/// every point behind it. The plane moves along its normal at `speed`.
+struct RigidWallSpec {
+  std::string name;
+  SourcePos pos;
+  Vec3 point;                    ///< a point of the plane at t = 0 (m)
+  Vec3 normal;                   ///< unit normal, pointing toward the side where the bodies are
+  double speed = 0;              ///< velocity of the plane along its normal (m/s)
+  double stiffness_factor = 0.5; ///< penalty stiffness as a fraction of a full family's bond stiffness (-)
+};
+
 struct SolverSpec {
   SourcePos pos;
   std::optional<double> end_time;        ///< s
@@ -167,6 +178,7 @@ struct Problem {
   std::vector<InitialConditionSpec> initial_conditions;
   std::vector<BoundaryConditionSpec> boundary_conditions;
   std::vector<BodyForceSpec> body_forces;
+  std::vector<RigidWallSpec> rigid_walls;
   SolverSpec solver;
   OutputSpec output;
   std::vector<Diagnostic> warnings;  ///< deck problems that do not stop the run (e.g. an unusual horizon)

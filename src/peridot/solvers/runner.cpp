@@ -117,6 +117,8 @@ class History {
                                         "momentum_x", "momentum_y", "momentum_z", "max_damage", "dissipated_energy",
                                         "fragments"};
     if (sim.has_correspondence()) columns.push_back("hourglass_work");
+    for (const RigidWall& wall : sim.walls().walls())
+      for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("wall_" + wall.name + axis);
     for (const std::string& name : problem.output.reaction_sets) {
       for (const NodeSet& set : sim.node_sets())
         if (set.name == name) reaction_sets_.push_back(&set);
@@ -135,6 +137,10 @@ class History {
                                sim_.external_work(), t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage,
                                t.dissipated_energy, static_cast<double>(t.fragments)};
     if (sim_.has_correspondence()) row.push_back(t.hourglass_work);
+    for (std::size_t w = 0; w < sim_.walls().walls().size(); ++w) {
+      const Vec3 force = sim_.walls().force_on_wall(w);
+      row.insert(row.end(), {force.x, force.y, force.z});
+    }
     for (const NodeSet* set : reaction_sets_) {
       Vec3 r = sim_.reaction(*set);
       row.insert(row.end(), {r.x, r.y, r.z});

@@ -29,6 +29,7 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
   }
   bonds_ = build_neighborhood(disc_, neighborhood);
   correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_);
+  walls_ = std::make_unique<RigidWalls>(problem_, model_);
 
   if (!problem_.no_fail_sets.empty()) {
     model_.no_fail.assign(disc_.num_points(), 0);
@@ -86,6 +87,7 @@ void Simulation::compute_forces(double dt) {
   if (history_arrays_ > 0) prepare_history(model_, state_.u, state_.dilatation, state_.history);
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && !any_dilatation_,
                          &state_.history);
+  if (!walls_->empty()) walls_->compute(state_.u, state_.time, wall_force_);
   if (!has_correspondence()) return;
   try {
     correspondence_->compute_force(state_.u, state_.v, dt, state_.force, state_.history);
@@ -99,13 +101,14 @@ void Simulation::kick(double half_dt) {
   double* v = state_.v.data();
   const double* f = state_.force.data();
   const double* b = state_.body_force.data();
+  const double* c = walls_->empty() ? nullptr : wall_force_.data();
   for (std::size_t block = 0; block < model_.ranges.size(); ++block) {
     const BlockRange range = model_.ranges[block];
     const double scale = half_dt / model_.params[block].density;
     const double decay = std::exp(-problem_.solver.damping * half_dt);
 #pragma omp parallel for schedule(static)
     for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
-      if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k]);
+      if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k] + (c ? c[k] : 0.0));
   }
 }
 
@@ -124,11 +127,13 @@ void Simulation::step() {
     const double* v = state_.v.data();  // v^{n+½}: Δu = Δt v^{n+½}
     const double* f = state_.force.data();
     const double* b = state_.body_force.data();
+    const double* c = walls_->empty() ? nullptr : wall_force_.data();
     double w = 0;
     for (std::uint64_t k : prescribed) w -= 0.5 * f[k] * disc_.volume[k / 3] * dt * v[k];
-    if (loads_->has_body_force())
+    if (loads_->has_body_force() || c)
       w += deterministic_sum(dofs, [&](std::size_t k) {
-        return kind[k] == DofKind::free ? 0.5 * b[k] * disc_.volume[k / 3] * dt * v[k] : 0.0;
+        const double applied = (loads_->has_body_force() ? b[k] : 0.0) + (c ? c[k] : 0.0);
+        return kind[k] == DofKind::free ? 0.5 * applied * disc_.volume[k / 3] * dt * v[k] : 0.0;
       });
     return w;
   };

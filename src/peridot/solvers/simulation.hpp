@@ -4,12 +4,15 @@
 //   v^{n+½} = v^n + (Δt/2) a^n,  u^{n+1} = u^n + Δt v^{n+½},  v^{n+1} = v^{n+½} + (Δt/2) a^{n+1},
 // with bond failure evaluated on u^{n+1} before the force, as Peridigm does. Inelastic models solve their
 // return map on u^{n+1} before the force and commit their history after it, once per step. Correspondence
-// blocks update their stress over the step from u^{n+1} and v^{n+1/2} (correspondence_blocks.hpp).
+// blocks update their stress over the step from u^{n+1} and v^{n+1/2} (correspondence_blocks.hpp). Rigid
+// walls add their penalty force density to the internal and body forces in both kicks, and their work to
+// the external work (trapezoidal, like the body force).
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "peridot/contact/rigid_wall.hpp"
 #include "peridot/deck/problem.hpp"
 #include "peridot/geometry/discretize.hpp"
 #include "peridot/loads/loads.hpp"
@@ -60,6 +63,9 @@ class Simulation {
   /// One Verlet step. Throws NumericalError naming step, time, point and position on a non-finite value.
   void step();
 
+  /// The rigid walls of the deck (contact/rigid_wall.hpp); empty() when none.
+  const RigidWalls& walls() const { return *walls_; }
+
   /// Whether some block uses the correspondence model (its history has an hourglass_work column).
   bool has_correspondence() const { return correspondence_ && !correspondence_->empty(); }
 
@@ -85,6 +91,8 @@ class Simulation {
   ModelContext model_;
   std::unique_ptr<Loads> loads_;
   std::unique_ptr<CorrespondenceBlocks> correspondence_;
+  std::unique_ptr<RigidWalls> walls_;
+  VectorField wall_force_;  ///< penalty force density of the walls (N/m³), at the time of the last force
   State state_;
   std::vector<double> energy_density_;
   double stable_dt_ = 0, dt_ = 0;
