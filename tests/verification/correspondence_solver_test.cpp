@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include <fmt/format.h>
@@ -147,6 +148,108 @@ solver: {{num_steps: 1}}
     EXPECT_NE(what.find("bodies.rod"), std::string::npos) << what;
     EXPECT_NE(what.find("'plate'"), std::string::npos) << what;
   }
+}
+
+}  // namespace
+}  // namespace peridot
+
+namespace peridot {
+namespace {
+
+// High-rate tension (Foster et al. 2010 §10, Figure 2): a round bar pulled from both ends at an engineering
+// strain rate of 8300 /s (end regions of two horizons moved at ±v; 2.4 mm grips on a 12 mm bar, so the gauge
+// section strains faster), J2 6061-T6. At the centre of the bar the (von Mises) true stress against the
+// Green–Lagrange strain E_zz (eq 62) follows the material-point driver in uniaxial stress at the centre's own
+// mean strain rate.
+TEST(CorrespondenceSolver, HighRateTensionFollowsTheMaterialPointDriver) {
+  const double length = 12e-3, rate = 8300, speed = 0.5 * rate * length;
+  const std::string deck = fmt::format(R"deck(discretization: {{dimension: 3, spacing: 0.4 mm, horizon_factor: 3.015}}
+materials:{}
+bodies:
+  bar: {{material: al, shape: {{cylinder: {{center: [0, 0, 0], axis: [0, 0, 1], radius: 2 mm, length: {}}}}}}}
+node_sets:
+  bottom: {{shape: {{box: {{min: [-1, -1, -1], max: [1, 1, 2.4e-3]}}}}}}
+  top: {{shape: {{box: {{min: [-1, -1, {}], max: [1, 1, 1]}}}}}}
+boundary_conditions:
+  - {{node_set: bottom, velocity: {{z: "-{}"}}}}
+  - {{node_set: top, velocity: {{z: "{}"}}}}
+initial_conditions:
+  - {{velocity: {{z: "{}*(z - {})"}}}}
+solver: {{end_time: 12 us}}
+)deck",
+                                       aluminium, length, length - 2.4e-3, speed, speed, rate, 0.5 * length);
+  Simulation sim(parse_deck(deck, "tension.yaml", "."));
+  const Discretization& disc = sim.discretization();
+  std::size_t centre = 0;
+  double best = 1;
+  for (std::size_t i = 0; i < disc.num_points(); ++i)
+    if (const double d = norm(disc.x.get(i) - Vec3{0, 0, 0.5 * length}); d < best) best = d, centre = i;
+  sim.initialize();
+  std::vector<double> strain, stress, von_mises, lateral, eqps;
+  while (sim.state().step < sim.total_steps()) {
+    sim.step();
+    sim.update_output_fields();
+    const auto& out = sim.state().point_outputs;
+    strain.push_back(out.at("green_lagrange_strain_zz")[centre]);
+    stress.push_back(out.at("cauchy_stress_zz")[centre]);
+    von_mises.push_back(out.at("von_mises_stress")[centre]);
+    lateral.push_back(out.at("cauchy_stress_xx")[centre]);
+    eqps.push_back(sim.state().history.plastic_strain[centre]);
+  }
+  // The centre's true strain rate, from its last F_zz over the run (ln F_zz / t).
+  const double F_zz = std::sqrt(1 + 2 * strain.back());
+  const double centre_rate = std::log(F_zz) / sim.state().time;
+  correspondence::UniaxialStressOptions options;
+  options.true_strain_rate = centre_rate;
+  options.dt = sim.time_step();
+  options.num_steps = static_cast<int>(sim.total_steps());
+  const auto driver = correspondence::run_uniaxial_stress(J2Viscoplastic::aluminium_6061_t6(), options);
+  std::vector<double> driver_strain, driver_stress;
+  for (const auto& sample : driver) {
+    const double f = sample.deformation_gradient(0, 0);
+    driver_strain.push_back(0.5 * (f * f - 1));
+    driver_stress.push_back(sample.cauchy_stress(0, 0));
+  }
+  auto driver_at = [&](double e) {
+    for (std::size_t k = 1; k < driver_strain.size(); ++k)
+      if (driver_strain[k] >= e) {
+        const double w = (e - driver_strain[k - 1]) / (driver_strain[k] - driver_strain[k - 1]);
+        return driver_stress[k - 1] + w * (driver_stress[k] - driver_stress[k - 1]);
+      }
+    return driver_stress.back();
+  };
+  // The centre rings radially (lateral inertia, period ≈ D/c ≈ 0.8 µs, ±10 % of the axial stress): compare
+  // averages over a 1 µs window, of the point's stresses and of the driver at the sampled strains alike.
+  // The von Mises stress is compared: at high rate the centre also carries a lateral stress (σ_xx ≈ −40 MPa,
+  // compressive, by E_zz = 0.2), which lowers σ_zz below the uniaxial curve while the flow follows it.
+  const std::size_t half = static_cast<std::size_t>(0.5e-6 / sim.time_step());
+  auto window_mean = [&](const std::vector<double>& values, std::size_t k) {
+    double sum = 0;
+    for (std::size_t q = k - half; q <= k + half; ++q) sum += values[q];
+    return sum / static_cast<double>(2 * half + 1);
+  };
+  std::vector<double> driver_values;
+  for (double e : strain) driver_values.push_back(driver_at(e));
+  double worst = 0, worst_strain = 0, worst_axial = 0, worst_lateral = 0;
+  for (std::size_t k = half; k + half < strain.size(); ++k) {
+    if (strain[k] < 0.01) continue;  // past the yield point
+    const double expected = window_mean(driver_values, k);
+    const double error = std::abs(window_mean(von_mises, k) / expected - 1);
+    if (error > worst) worst = error, worst_strain = strain[k];
+    worst_axial = std::max(worst_axial, std::abs(window_mean(stress, k) / expected - 1));
+    worst_lateral = std::max(worst_lateral, std::abs(window_mean(lateral, k)));
+  }
+  if (std::getenv("PERIDOT_VERBOSE"))
+    for (std::size_t k = half; k + half < strain.size(); k += 10)
+      fmt::print("  E_zz {:.4f} σ_zz {:.4g} vm {:.4g} σ_xx {:.4g} driver {:.4g} εp {:.4f}\n", strain[k],
+                 window_mean(stress, k), window_mean(von_mises, k), window_mean(lateral, k),
+                 window_mean(driver_values, k), eqps[k]);
+  fmt::print("measured: centre true rate {:.0f} /s, final E_zz {:.4f}; 1 µs averages beyond E_zz = 0.01: von Mises vs "
+             "driver worst {:.3g} (at E_zz = {:.4f}), σ_zz vs driver worst {:.3g}, largest |σ_xx| {:.3g} Pa\n",
+             centre_rate, strain.back(), worst, worst_strain, worst_axial, worst_lateral);
+  ASSERT_GT(strain.back(), 0.06);
+  // Measured: von Mises within 1.1 % of the driver (centre rate 16655 /s, E_zz to 0.25); σ_zz within 10 %.
+  EXPECT_LT(worst, 0.02);
 }
 
 }  // namespace
