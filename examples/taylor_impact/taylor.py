@@ -91,7 +91,9 @@ SETS = {
     "short": [("short", 8, 3.015, 5, 244, 60)],
     "ld5": [(f"ld5_{v}", 20, 3.015, 5, v, 80) for v in (170, 244, 295)],
     "other": [("ld2_240", 20, 3.015, 2, 240, 60), ("ld10_256", 20, 3.015, 10, 256, 140)],
-    "convergence": [("conv_n30_d3", 30, 3.015, 5, 244, 80), ("conv_n20_d4", 20, 4.015, 5, 244, 80)],
+    # 50 µs: the rod has left the anvil by 47 µs at 244 m/s (its kinetic energy is then 0.6 % of the initial)
+    "convergence": [("conv_n20_d3", 20, 3.015, 5, 244, 50), ("conv_n20_d4", 20, 4.015, 5, 244, 50),
+                    ("conv_n30_d3", 30, 3.015, 5, 244, 50)],
 }
 SETS["all"] = SETS["ld5"] + SETS["other"] + SETS["convergence"]
 

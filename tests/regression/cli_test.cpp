@@ -136,31 +136,28 @@ TEST(Cli, BlowUpExitsThreeNamingStepTimeAndPoint) {
   EXPECT_NE(read_file(dir / "out" / "run.log").find("error: non-finite"), std::string::npos);
 }
 
-// Same deck, 1 and 2 threads: every output byte identical (Exodus frames and history).
-TEST(Cli, OneAndTwoThreadsGiveIdenticalBits) {
-  const fs::path deck = source / "tests" / "regression" / "decks" / "exodus_small.yaml";
-  const fs::path one = scratch("threads1"), two = scratch("threads2");
-  ASSERT_EQ(run("run -q -t 1 -o " + one.string() + " " + deck.string()).status, 0);
-  ASSERT_EQ(run("run -q -t 2 -o " + two.string() + " " + deck.string()).status, 0);
+/// Runs `deck` with 1 and 2 threads into scratch folders named after `name`; expects every byte of small.e
+/// and history.csv identical, and returns the 1-thread folder.
+fs::path expect_identical_with_one_and_two_threads(const std::string& deck_name, const std::string& name) {
+  const fs::path deck = source / "tests" / "regression" / "decks" / deck_name;
+  const fs::path one = scratch(name + "1"), two = scratch(name + "2");
+  EXPECT_EQ(run("run -q -t 1 -o " + one.string() + " " + deck.string()).status, 0);
+  EXPECT_EQ(run("run -q -t 2 -o " + two.string() + " " + deck.string()).status, 0);
   for (const char* file : {"small.e", "history.csv"}) {
     const std::string a = read_file(one / file), b = read_file(two / file);
     EXPECT_FALSE(a.empty()) << file;
     EXPECT_TRUE(a == b) << file << " differs between 1 and 2 threads";
   }
+  return one;
 }
+
+// Same deck, 1 and 2 threads: every output byte identical (Exodus frames and history).
+TEST(Cli, OneAndTwoThreadsGiveIdenticalBits) { expect_identical_with_one_and_two_threads("exodus_small.yaml", "threads"); }
 
 // The correspondence model: 1 and 2 threads give identical bits (the gathers and sums do not depend on the
 // split), the history has the hourglass work and the Exodus file the correspondence fields.
 TEST(Cli, CorrespondenceOneAndTwoThreadsGiveIdenticalBits) {
-  const fs::path deck = source / "tests" / "regression" / "decks" / "correspondence_small.yaml";
-  const fs::path one = scratch("corr_threads1"), two = scratch("corr_threads2");
-  ASSERT_EQ(run("run -q -t 1 -o " + one.string() + " " + deck.string()).status, 0);
-  ASSERT_EQ(run("run -q -t 2 -o " + two.string() + " " + deck.string()).status, 0);
-  for (const char* file : {"small.e", "history.csv"}) {
-    const std::string a = read_file(one / file), b = read_file(two / file);
-    EXPECT_FALSE(a.empty()) << file;
-    EXPECT_TRUE(a == b) << file << " differs between 1 and 2 threads";
-  }
+  const fs::path one = expect_identical_with_one_and_two_threads("correspondence_small.yaml", "corr_threads");
   EXPECT_NE(read_file(one / "history.csv").find("hourglass_work"), std::string::npos);
   const std::string exodus = read_file(one / "small.e");  // netCDF keeps variable names as plain text
   for (const char* field : {"deformation_gradient_zy", "cauchy_stress_zx", "von_mises_stress", "green_lagrange_strain_xy",

@@ -15,6 +15,7 @@
 #include "peridot/correspondence/j2_viscoplastic.hpp"
 #include "peridot/correspondence/material_point_driver.hpp"
 #include "peridot/deck/deck.hpp"
+#include "peridot/materials/registry.hpp"
 #include "peridot/solvers/simulation.hpp"
 
 namespace peridot {
@@ -23,25 +24,18 @@ namespace {
 using correspondence::J2Viscoplastic;
 using correspondence::Mat3;
 
-// Foster's 6061-T6 (J2Viscoplastic::aluminium_6061_t6), in deck form.
-constexpr const char* aluminium = R"(
-  al:
-    model: correspondence
-    density: 2.7 g/cm^3
-    youngs_modulus: 68.9 GPa
-    poisson_ratio: 0.333
-    constitutive_law: j2_viscoplastic
-    yield_stress: 276 MPa
-    hardening_exponent: 13.5
-    reference_plastic_strain: 0.001
-    rate_exponent: 44
-    reference_strain_rate: 1000 1/s)";
+// The example of the model's page (docs/models/correspondence.md): Foster's 6061-T6
+// (J2Viscoplastic::aluminium_6061_t6) as material 'aluminium', with the default hourglass control.
+const std::string aluminium = [] {
+  const std::string example(model_info(ModelKind::correspondence).doc.example);
+  return example.substr(example.find('\n'));  // without the "materials:" line
+}();
 
 Problem cube_problem(const std::string& loads, const std::string& solver) {
   const std::string deck = fmt::format(R"(discretization: {{dimension: 3, spacing: 1 mm, horizon_factor: 3.015}}
 materials:{}
 bodies:
-  cube: {{material: al, shape: {{box: {{min: [0, 0, 0], max: [0.006, 0.006, 0.006]}}}}}}
+  cube: {{material: aluminium, shape: {{box: {{min: [0, 0, 0], max: [0.006, 0.006, 0.006]}}}}}}
 node_sets:
   all: {{shape: {{box: {{min: [-1, -1, -1], max: [1, 1, 1]}}}}}}
 {}
@@ -134,7 +128,7 @@ TEST(CorrespondenceSolver, BondsToAnotherModelAreRefused) {
 materials:{}
   steel: {{model: lps, density: 7800, youngs_modulus: 200 GPa, poisson_ratio: 0.3}}
 bodies:
-  rod: {{material: al, shape: {{box: {{min: [0, 0, 0], max: [0.004, 0.004, 0.004]}}}}}}
+  rod: {{material: aluminium, shape: {{box: {{min: [0, 0, 0], max: [0.004, 0.004, 0.004]}}}}}}
   plate: {{material: steel, shape: {{box: {{min: [0.004, 0, 0], max: [0.008, 0.004, 0.004]}}}}}}
 solver: {{num_steps: 1}}
 )",
@@ -166,7 +160,7 @@ TEST(CorrespondenceSolver, HighRateTensionFollowsTheMaterialPointDriver) {
   const std::string deck = fmt::format(R"deck(discretization: {{dimension: 3, spacing: 0.4 mm, horizon_factor: 3.015}}
 materials:{}
 bodies:
-  bar: {{material: al, shape: {{cylinder: {{center: [0, 0, 0], axis: [0, 0, 1], radius: 2 mm, length: {}}}}}}}
+  bar: {{material: aluminium, shape: {{cylinder: {{center: [0, 0, 0], axis: [0, 0, 1], radius: 2 mm, length: {}}}}}}}
 node_sets:
   bottom: {{shape: {{box: {{min: [-1, -1, -1], max: [1, 1, 2.4e-3]}}}}}}
   top: {{shape: {{box: {{min: [-1, -1, {}], max: [1, 1, 1]}}}}}}

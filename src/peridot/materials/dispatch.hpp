@@ -36,14 +36,12 @@ decltype(auto) with_model(ModelKind kind, F&& f) {
 /// correspondence model is a programming error.
 template <class F>
 decltype(auto) with_bond_model(ModelKind kind, F&& f) {
-  switch (kind) {
-    case ModelKind::pmb: return std::forward<F>(f)(Pmb{});
-    case ModelKind::lps: return std::forward<F>(f)(Lps{});
-    case ModelKind::lps_plastic: return std::forward<F>(f)(LpsPlastic{});
-    case ModelKind::lps_viscoelastic: return std::forward<F>(f)(LpsViscoelastic{});
-    case ModelKind::correspondence: break;
-  }
-  throw std::logic_error("with_bond_model: the correspondence model has no bond kernel");
+  return with_model(kind, [&](auto model) -> decltype(std::forward<F>(f)(Pmb{})) {
+    if constexpr (std::is_same_v<decltype(model), CorrespondenceTag>)
+      throw std::logic_error("with_bond_model: the correspondence model has no bond kernel");
+    else
+      return std::forward<F>(f)(model);
+  });
 }
 
 template <class F>
