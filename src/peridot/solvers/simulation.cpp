@@ -106,9 +106,15 @@ void Simulation::kick(double half_dt) {
     const BlockRange range = model_.ranges[block];
     const double scale = half_dt / model_.params[block].density;
     const double decay = std::exp(-problem_.solver.damping * half_dt);
+    if (c) {
 #pragma omp parallel for schedule(static)
-    for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
-      if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k] + (c ? c[k] : 0.0));
+      for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
+        if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k] + c[k]);
+    } else {
+#pragma omp parallel for schedule(static)
+      for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
+        if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k]);
+    }
   }
 }
 
@@ -130,9 +136,10 @@ void Simulation::step() {
     const double* c = walls_->empty() ? nullptr : wall_force_.data();
     double w = 0;
     for (std::uint64_t k : prescribed) w -= 0.5 * f[k] * disc_.volume[k / 3] * dt * v[k];
-    if (loads_->has_body_force() || c)
+    const bool body_force = loads_->has_body_force();
+    if (body_force || c)
       w += deterministic_sum(dofs, [&](std::size_t k) {
-        const double applied = (loads_->has_body_force() ? b[k] : 0.0) + (c ? c[k] : 0.0);
+        const double applied = (body_force ? b[k] : 0.0) + (c ? c[k] : 0.0);
         return kind[k] == DofKind::free ? 0.5 * applied * disc_.volume[k / 3] * dt * v[k] : 0.0;
       });
     return w;
