@@ -87,7 +87,7 @@ class HomogeneousBlock {
       const std::uint32_t j = bonds.neighbors[b];
       const auto g = bond_loop::bond_geometry<3>(sim_.discretization().x.data(), state.u.data(), i, j);
       const double omega = influence(p.influence, g.xi, p.horizon);
-      const double t = with_model(p.model, [&](auto m) { return m.force_scalar(p, fields, i, b, g.e, g.xi, omega); });
+      const double t = with_bond_model(p.model, [&](auto m) { return m.force_scalar(p, fields, i, b, g.e, g.xi, omega); });
       body(b, t, g, bond_loop::neighbor_volume(ctx, i, j, g.xi));
     }
   }

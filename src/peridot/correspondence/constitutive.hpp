@@ -43,11 +43,14 @@ inline Mat3 first_piola_kirchhoff(const Mat3& F, const Mat3& cauchy) {
 /// One material point through one step: F_end = F^{n+1}, F_rate = Ḟ^{n+1/2} (1/s). Updates R, V, τ and
 /// the history; returns the Cauchy stress σ^{n+1} = R τ Rᵀ (Pa). The peridynamic block loop and the
 /// material-point driver both call this, so a homogeneous peridynamic deformation reproduces the driver.
+/// When `rate_of_deformation` is given it receives the unrotated d of the step (1/s).
 template <ConstitutiveLaw Law>
 Mat3 material_point_step(const Law& law, const Mat3& F_end, const Mat3& F_rate, double dt, PolarState& polar,
-                         Mat3& unrotated_stress, typename Law::History& history) {
+                         Mat3& unrotated_stress, typename Law::History& history,
+                         Mat3* rate_of_deformation = nullptr) {
   const Mat3 L = mid_step_velocity_gradient(F_end, F_rate, dt);
   const Mat3 d = flanagan_taylor_update(L, dt, polar);
+  if (rate_of_deformation) *rate_of_deformation = d;
   unrotated_stress = law.update(unrotated_stress, d, dt, history);
   return polar.rotation * unrotated_stress * polar.rotation.transpose();
 }
@@ -77,12 +80,34 @@ struct CorrespondenceBlock {
   CorrespondenceBlock(Law l, BlockRange r) : law(std::move(l)), range(r), history(r.end - r.begin) {}
 };
 
+/// Inelastic work of one step per unit reference volume (J/m³): the work of the stress on the part of the
+/// strain increment that the elastic law does not account for,
+///   ΔW_in = J_{n+½} S_{n+½} : (dev(d) Δt − (S_{n+1} − S_n)/(2μ)),   S = dev τ, S_{n+½} = ½(S_n + S_{n+1}).
+/// With the pressure update p_{n+1} = p_n + K tr(d) Δt of both laws, the trapezoidal stress work
+/// J τ_{n+½} : d Δt is exactly ΔW_in plus the change of the elastic energy J (p²/(2K) + S:S/(4μ)), so the two
+/// partition the work of the stress. For the hypoelastic law ΔW_in = 0; for J2 it is the plastic work.
+inline double inelastic_work_increment(const Mat3& tau_old, const Mat3& tau_new, const Mat3& d, double dt,
+                                       double shear_modulus, double mid_step_jacobian) {
+  const Mat3 S_old = deviator(tau_old), S_new = deviator(tau_new);
+  return mid_step_jacobian * double_contraction(0.5 * (S_old + S_new),
+                                                deviator(d) * dt - (S_new - S_old) / (2 * shear_modulus));
+}
+
+/// Elastic energy per unit reference volume (J/m³) of an unrotated stress τ (Pa) and J = det F:
+/// J (p²/(2K) + S:S/(4μ)), p = tr(τ)/3, S = dev τ.
+inline double elastic_energy_density(const Mat3& tau, double jacobian, double bulk_modulus, double shear_modulus) {
+  const double p = tau.trace() / 3;
+  const Mat3 S = deviator(tau);
+  return jacobian * (p * p / (2 * bulk_modulus) + double_contraction(S, S) / (4 * shear_modulus));
+}
+
 /// The stress step for every point of the block, from the kinematics of this step (u^{n+1}, v^{n+1/2}).
-/// Throws NumericalError naming the lowest-numbered point whose F is inverted (det F ≤ 0) or whose law
-/// returned a non-finite stress.
+/// When `inelastic_work` is given (one entry per point of the problem), ΔW_in of every point of the block
+/// is added to it (inelastic_work_increment). Throws NumericalError naming the lowest-numbered point whose
+/// F is inverted (det F ≤ 0) or whose law returned a non-finite stress.
 template <ConstitutiveLaw Law>
 void update_block_stress(const CorrespondenceContext& ctx, const KinematicFields& kin, double dt,
-                         CorrespondenceBlock<Law>& block, StressFields& s) {
+                         CorrespondenceBlock<Law>& block, StressFields& s, double* inelastic_work = nullptr) {
   constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
   std::size_t first_inverted = none, first_nonfinite = none;
   const std::size_t begin = block.range.begin, end = block.range.end;
@@ -96,12 +121,16 @@ void update_block_stress(const CorrespondenceContext& ctx, const KinematicFields
       continue;
     }
     PolarState polar{s.rotation.get(i), s.left_stretch.get(i)};
-    Mat3 tau = s.unrotated_stress.get(i);
-    const Mat3 sigma = material_point_step(block.law, F, F_rate, dt, polar, tau, block.history[i - begin]);
+    const Mat3 tau_old = s.unrotated_stress.get(i);
+    Mat3 tau = tau_old, d;
+    const Mat3 sigma = material_point_step(block.law, F, F_rate, dt, polar, tau, block.history[i - begin], &d);
     if (!sigma.allFinite()) {
       first_nonfinite = std::min(first_nonfinite, i);
       continue;
     }
+    if (inelastic_work)
+      inelastic_work[i] += inelastic_work_increment(tau_old, tau, d, dt, block.law.shear_modulus(),
+                                                    (F - 0.5 * dt * F_rate).determinant());
     s.rotation.set(i, polar.rotation);
     s.left_stretch.set(i, polar.left_stretch);
     s.unrotated_stress.set(i, tau);

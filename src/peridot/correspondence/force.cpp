@@ -14,10 +14,17 @@ double hourglass_stiffness(double coefficient, double bulk_modulus, double horiz
 
 void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
                                   const StressFields& s, const VectorField& u, VectorField& f) {
+  compute_correspondence_force(ctx, kin, s, u, f, BlockRange{0, ctx.disc->num_points()});
+}
+
+void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
+                                  const StressFields& s, const VectorField& u, VectorField& f, BlockRange range,
+                                  VectorField* hourglass_force) {
   const Discretization& disc = *ctx.disc;
   const BondList& bonds = *ctx.bonds;
   const std::size_t n = disc.num_points();
   if (f.size() != n) f.resize(n);
+  if (hourglass_force && hourglass_force->size() != n) hourglass_force->resize(n);
   const bool hourglass =
       std::any_of(ctx.hourglass_stiffness.begin(), ctx.hourglass_stiffness.end(), [](double c) { return c != 0; });
   const double* x = disc.x.data();
@@ -25,11 +32,11 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
   const double* A = s.force_tensor.data();
   const double* F = kin.deformation_gradient.data();
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = range.begin; i < range.end; ++i) {
     const double* Ai = A + 9 * i;
     const double* Fi = F + 9 * i;
     const double ci = hourglass ? ctx.hourglass_stiffness[disc.block[i]] : 0.0;
-    double fi[3] = {0, 0, 0};
+    double fi[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       if (bonds.broken[b]) continue;
       const std::size_t j = bonds.neighbors[b];
@@ -58,12 +65,14 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
           zj_n += (y[r] - (Fj[3 * r] * xi[0] + Fj[3 * r + 1] * xi[1] + Fj[3 * r + 2] * xi[2])) * nr;
         }
         const double scalar = (wi * ci * zi_n + wj * cj * zj_n) / (xi_length * y_length);
-        for (int r = 0; r < 3; ++r) t[r] += scalar * y[r];
+        for (int r = 0; r < 3; ++r) fh[r] += scalar * y[r] * disc.volume[j];
       }
       const double vj = disc.volume[j];
       for (int r = 0; r < 3; ++r) fi[r] += t[r] * vj;
     }
-    for (int r = 0; r < 3; ++r) f(i, r) = fi[r];
+    for (int r = 0; r < 3; ++r) f(i, r) = fi[r] + fh[r];
+    if (hourglass_force)
+      for (int r = 0; r < 3; ++r) (*hourglass_force)(i, r) = fh[r];
   }
 }
 

@@ -30,5 +30,11 @@ double hourglass_stiffness(double coefficient, double bulk_modulus, double horiz
 /// displacement the kinematics was computed from.
 void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
                                   const StressFields& s, const VectorField& u, VectorField& f);
+/// The same for the points of `range` only (f is left untouched outside it). When `hourglass` is given
+/// (sized for every point), it receives the hourglass part of f in the range, so that its work can be
+/// measured.
+void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
+                                  const StressFields& s, const VectorField& u, VectorField& f, BlockRange range,
+                                  VectorField* hourglass = nullptr);
 
 }  // namespace peridot::correspondence

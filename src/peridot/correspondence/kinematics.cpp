@@ -75,6 +75,11 @@ namespace {
 
 void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
                         KinematicFields& out) {
+  compute_kinematics(ctx, u, v, out, BlockRange{0, ctx.disc->num_points()});
+}
+
+void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
+                        KinematicFields& out, BlockRange range) {
   const Discretization& disc = *ctx.disc;
   const BondList& bonds = *ctx.bonds;
   const std::size_t n = disc.num_points();
@@ -90,7 +95,7 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
   // the loop, which makes the message independent of the thread count.
   std::size_t first_bad = std::numeric_limits<std::size_t>::max();
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = range.begin; i < range.end; ++i) {
     double K[9] = {}, N[9] = {}, Ndot[9] = {};
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       if (bonds.broken[b]) continue;

@@ -15,6 +15,7 @@
 
 #include "peridot/correspondence/tensor.hpp"
 #include "peridot/deck/problem.hpp"
+#include "peridot/geometry/discretize.hpp"
 #include "peridot/state/fields.hpp"
 
 namespace peridot::correspondence {
@@ -60,6 +61,10 @@ struct KinematicFields {
 /// singular or ill-conditioned (fewer than three non-coplanar intact bonds), rather than producing NaNs.
 void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
                         KinematicFields& out);
+/// The same for the points of `range` only (one correspondence block of a problem that mixes models); the
+/// fields are sized for every point and left untouched outside the range.
+void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
+                        KinematicFields& out, BlockRange range);
 
 /// L = Ḟ F⁻¹ (eq 14) at mid-step, F^{n+1/2} = F^{n+1} − ½Δt Ḟ (1/s), second-order accurate. When F^n and
 /// F^{n+1} are both rotations (F^{n+1} = Q F^n), L = (2/Δt)(Q − I)(Q + I)⁻¹ is exactly skew (the Cayley

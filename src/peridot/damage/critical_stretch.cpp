@@ -10,7 +10,7 @@ void compute_damage(const ModelContext& ctx, std::vector<double>& damage) {
   const double* x = ctx.disc->x.data();
   const BondList& bonds = *ctx.bonds;
   damage.resize(ctx.disc->num_points());
-  for_each_block(ctx, [&](auto dim, auto, const MaterialParams&, BlockRange range) {
+  for_each_block_geometry(ctx, [&](auto dim, const MaterialParams&, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {

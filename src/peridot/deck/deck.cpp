@@ -158,8 +158,49 @@ struct Parser {
       m.hardening_modulus = r.optional_number("hardening_modulus").value_or(0);
       m.relaxing_fraction = r.optional_number("relaxing_fraction").value_or(0);
       m.relaxation_time = r.optional_number("relaxation_time").value_or(0);
+      if (model && model->dimension != 0 && model->dimension != p.dimension)
+        ctx.error(r["model"].pos, r.path_of("model"),
+                  fmt::format("model {} is implemented in {}D only (discretization.dimension: {})", model->name,
+                              model->dimension, model->dimension));
+      if (m.model == ModelKind::correspondence) parse_correspondence(r, m);
       p.materials.push_back(std::move(m));
     });
+  }
+
+  /// The law and its parameters, and what the correspondence model cannot do yet (docs/models/correspondence.md).
+  void parse_correspondence(const MapReader& r, MaterialSpec& m) {
+    if (r.given("damage"))
+      ctx.error(r["damage"].key_pos, r.path_of("damage"),
+                "the correspondence model has no bond failure yet; remove damage (broken bonds would leave K, F "
+                "and the force state without a failure criterion)");
+    const bool j2 = r["constitutive_law"].text == "j2_viscoplastic";
+    m.constitutive_law = j2 ? ConstitutiveLawKind::j2_viscoplastic : ConstitutiveLawKind::hypoelastic;
+    m.hourglass_coefficient = r["hourglass_coefficient"].number;
+    static constexpr std::string_view j2_keys[] = {"yield_stress", "hardening_exponent", "reference_plastic_strain",
+                                                   "rate_exponent", "reference_strain_rate"};
+    if (!j2) {
+      for (std::string_view key : j2_keys)
+        if (r.given(key))
+          ctx.error(r[key].key_pos, r.path_of(key),
+                    fmt::format("{} is a parameter of constitutive_law: j2_viscoplastic, not of hypoelastic", key));
+      return;
+    }
+    if (!r.present("yield_stress"))
+      ctx.error(r["constitutive_law"].pos, r.path(), "constitutive_law: j2_viscoplastic needs yield_stress");
+    // An exponent and its reference value come together: (1 + εp/ε0)^(1/n), (1 + ε̇p/ε̇0)^(1/m).
+    for (auto [exponent, reference] : {std::pair<std::string_view, std::string_view>{"hardening_exponent", "reference_plastic_strain"},
+                                       {"rate_exponent", "reference_strain_rate"}})
+      if (r.present(exponent) != r.present(reference)) {
+        std::string_view given = r.present(exponent) ? exponent : reference;
+        if (r.given(given))
+          ctx.error(r[given].key_pos, r.path_of(given),
+                  fmt::format("{} and {} go together; give both or neither", exponent, reference));
+      }
+    m.yield_stress = r.optional_number("yield_stress").value_or(0);
+    m.hardening_exponent = r.optional_number("hardening_exponent").value_or(std::numeric_limits<double>::infinity());
+    m.reference_plastic_strain = r.optional_number("reference_plastic_strain").value_or(1);
+    m.rate_exponent = r.optional_number("rate_exponent").value_or(std::numeric_limits<double>::infinity());
+    m.reference_strain_rate = r.optional_number("reference_strain_rate").value_or(1);
   }
 
   DamageSpec parse_damage(const Value& v, const std::string& path) {
@@ -454,6 +495,33 @@ struct Parser {
     });
   }
 
+  void parse_rigid_walls(const Value& v) {
+    std::vector<std::string_view> names;
+    for_each_item(v, "rigid_walls", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("rigid_walls[i]").keys);
+      RigidWallSpec w;
+      w.name = r["name"].text;
+      w.pos = pos;
+      w.point = r["point"].point;
+      w.normal = r["normal"].point;
+      w.speed = r["speed"].number;
+      w.stiffness_factor = r["stiffness_factor"].number;
+      if (r.given("normal")) {
+        if (p.dimension == 2) w.normal.z = 0;
+        if (norm(w.normal) == 0)
+          ctx.error(r["normal"].pos, r.path_of("normal"), "must not be zero (in 2D: its x, y must not both be zero)");
+        else
+          w.normal = (1 / norm(w.normal)) * w.normal;
+      }
+      p.rigid_walls.push_back(std::move(w));
+    });
+    for (const RigidWallSpec& w : p.rigid_walls) {
+      if (std::find(names.begin(), names.end(), w.name) != names.end())
+        ctx.error(w.pos, "rigid_walls", fmt::format("two walls are named '{}'", w.name));
+      names.push_back(w.name);
+    }
+  }
+
   // -- solver and output -------------------------------------------------------------------------
 
   void parse_solver(const Value& v) {
@@ -505,6 +573,7 @@ struct Parser {
     parse_initial_conditions(r["initial_conditions"]);
     parse_boundary_conditions(r["boundary_conditions"]);
     parse_body_forces(r["body_forces"]);
+    parse_rigid_walls(r["rigid_walls"]);
     if (r.given("solver")) parse_solver(r["solver"]);
     if (r.given("output")) {
       parse_output(r["output"]);

@@ -4,6 +4,7 @@
 // pipeline reads only this; it never sees YAML. Each item keeps the deck position it came from, so that
 // errors found later (a node set that selects no point) can still name file:line:col.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,7 +15,9 @@
 
 namespace peridot {
 
-enum class ModelKind { pmb, lps, lps_plastic, lps_viscoelastic };
+enum class ModelKind { pmb, lps, lps_plastic, lps_viscoelastic, correspondence };
+/// The constitutive law of a correspondence material (correspondence/hypoelastic.hpp, j2_viscoplastic.hpp).
+enum class ConstitutiveLawKind { hypoelastic, j2_viscoplastic };
 enum class InfluenceKind { constant, inverse_distance, gaussian };  ///< ω = 1, δ/ξ, exp(−ξ²/δ²)
 enum class PlaneKind { none, stress, strain };                      ///< none in 3D
 /// Partial volumes: a neighbour cell cut by the horizon counts in proportion (linear ramp, ½ on the
@@ -49,6 +52,13 @@ struct MaterialSpec {
   double hardening_modulus = 0;    ///< H (Pa), lps_plastic: σ_Y = σ_y + H ε̄p
   double relaxing_fraction = 0;    ///< λ_i (-), lps_viscoelastic: share of the deviatoric stiffness that relaxes
   double relaxation_time = 0;      ///< τ_b (s), lps_viscoelastic
+  // correspondence (Foster, Silling & Chen 2010): the law, J2 parameters (yield_stress is Y) and hourglass control.
+  ConstitutiveLawKind constitutive_law = ConstitutiveLawKind::hypoelastic;
+  double hardening_exponent = std::numeric_limits<double>::infinity();  ///< n (-); ∞ = no strain hardening
+  double reference_plastic_strain = 1;                                 ///< ε0 (-)
+  double rate_exponent = std::numeric_limits<double>::infinity();       ///< m (-); ∞ = rate independent
+  double reference_strain_rate = 1;                                    ///< ε̇0 (1/s)
+  double hourglass_coefficient = 0;                                    ///< C_HG (-)
 };
 
 /// Where a body's points come from: a shape filled on the lattice, or a text point file
@@ -107,6 +117,17 @@ struct BodyForceSpec {
   std::optional<Expression> component[3];  ///< force density (N/m³) of x, y, z, t
 };
 
+/// A rigid, frictionless plane that the points cannot cross (contact/rigid_wall.hpp): penalty contact on
+/// every point behind it. The plane moves along its normal at `speed`.
+struct RigidWallSpec {
+  std::string name;
+  SourcePos pos;
+  Vec3 point;                    ///< a point of the plane at t = 0 (m)
+  Vec3 normal;                   ///< unit normal, pointing toward the side where the bodies are
+  double speed = 0;              ///< velocity of the plane along its normal (m/s)
+  double stiffness_factor = 0.5; ///< penalty stiffness as a fraction of a full family's bond stiffness (-)
+};
+
 struct SolverSpec {
   SourcePos pos;
   std::optional<double> end_time;        ///< s
@@ -157,6 +178,7 @@ struct Problem {
   std::vector<InitialConditionSpec> initial_conditions;
   std::vector<BoundaryConditionSpec> boundary_conditions;
   std::vector<BodyForceSpec> body_forces;
+  std::vector<RigidWallSpec> rigid_walls;
   SolverSpec solver;
   OutputSpec output;
   std::vector<Diagnostic> warnings;  ///< deck problems that do not stop the run (e.g. an unusual horizon)

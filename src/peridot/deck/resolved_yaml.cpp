@@ -1,5 +1,7 @@
 // The resolved deck: what the run understood, written next to its results so that a run folder
 // describes itself. Every value is explicit and in SI; parse_deck reads it back unchanged.
+#include <cmath>
+
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
@@ -92,6 +94,39 @@ void emit_discretization(YAML::Emitter& out, const Problem& p) {
   out << YAML::EndMap;
 }
 
+/// The keys a model adds to the common ones (registry.cpp), so that the resolved deck runs the same model.
+void emit_model_parameters(YAML::Emitter& out, const MaterialSpec& m) {
+  auto key = [&](const char* name, double value) { out << YAML::Key << name << YAML::Value << number(value); };
+  switch (m.model) {
+    case ModelKind::pmb:
+    case ModelKind::lps: return;
+    case ModelKind::lps_plastic:
+      key("yield_stress", m.yield_stress);
+      key("hardening_modulus", m.hardening_modulus);
+      return;
+    case ModelKind::lps_viscoelastic:
+      key("relaxing_fraction", m.relaxing_fraction);
+      key("relaxation_time", m.relaxation_time);
+      return;
+    case ModelKind::correspondence: {
+      const bool j2 = m.constitutive_law == ConstitutiveLawKind::j2_viscoplastic;
+      out << YAML::Key << "constitutive_law" << YAML::Value << (j2 ? "j2_viscoplastic" : "hypoelastic");
+      key("hourglass_coefficient", m.hourglass_coefficient);
+      if (!j2) return;
+      key("yield_stress", m.yield_stress);
+      if (std::isfinite(m.hardening_exponent)) {
+        key("hardening_exponent", m.hardening_exponent);
+        key("reference_plastic_strain", m.reference_plastic_strain);
+      }
+      if (std::isfinite(m.rate_exponent)) {
+        key("rate_exponent", m.rate_exponent);
+        key("reference_strain_rate", m.reference_strain_rate);
+      }
+      return;
+    }
+  }
+}
+
 void emit_materials(YAML::Emitter& out, const Problem& p) {
   out << YAML::Key << "materials" << YAML::Value << YAML::BeginMap;
   for (const MaterialSpec& m : p.materials) {
@@ -103,6 +138,7 @@ void emit_materials(YAML::Emitter& out, const Problem& p) {
     out << YAML::Key << "youngs_modulus" << YAML::Value << number(m.elastic.youngs_modulus);
     out << YAML::Key << "poisson_ratio" << YAML::Value << number(m.elastic.poisson_ratio);
     out << YAML::Key << "influence" << YAML::Value << std::string(influence_name(m.influence));
+    emit_model_parameters(out, m);
     if (m.damage.enabled) {
       out << YAML::Key << "damage" << YAML::Value << YAML::BeginMap;
       if (m.damage.critical_stretch) out << YAML::Key << "critical_stretch" << YAML::Value << number(*m.damage.critical_stretch);
@@ -206,6 +242,15 @@ void emit_loads(YAML::Emitter& out, const Problem& p) {
   emit_list(out, "body_forces", p.body_forces, [&](const BodyForceSpec& f) {
     if (!f.node_set.empty()) out << YAML::Key << "node_set" << YAML::Value << f.node_set;
     emit_components(out, f.component);
+  });
+  emit_list(out, "rigid_walls", p.rigid_walls, [&](const RigidWallSpec& w) {
+    out << YAML::Key << "name" << YAML::Value << w.name;
+    out << YAML::Key << "point" << YAML::Value;
+    emit_point(out, w.point);
+    out << YAML::Key << "normal" << YAML::Value;
+    emit_point(out, w.normal);
+    out << YAML::Key << "speed" << YAML::Value << number(w.speed);
+    out << YAML::Key << "stiffness_factor" << YAML::Value << number(w.stiffness_factor);
   });
 }
 

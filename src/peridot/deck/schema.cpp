@@ -181,6 +181,7 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "initial_conditions", .type = VT::sequence, .description = "initial displacement or velocity"},
                 {.key = "boundary_conditions", .type = VT::sequence, .description = "prescribed displacement or velocity"},
                 {.key = "body_forces", .type = VT::sequence, .description = "force per volume"},
+                {.key = "rigid_walls", .type = VT::sequence, .description = "rigid frictionless planes the points cannot cross"},
                 {.key = "solver", .type = VT::mapping, .description = "explicit time integration", .required = true},
                 {.key = "output", .type = VT::mapping, .description = "Exodus fields, CSV history, progress"}}});
   s.push_back({"discretization", "the point lattice",
@@ -271,6 +272,19 @@ std::vector<SectionSpec> make_sections() {
   s.push_back({"boundary_conditions[i].velocity", "prescribed velocity (m/s)", component_keys(Unit::velocity, VT::expression)});
   s.push_back({"body_forces[i]", "force per volume (N/m^3), functions of x, y, z, t",
                with_node_set(component_keys(Unit::force_density, VT::expression), false)});
+  s.push_back({"rigid_walls[i]",
+               "a rigid, frictionless plane (an anvil): penalty force density κ·(penetration) along the normal on every "
+               "point behind it, κ = stiffness_factor × the Silling–Askari stiffness Σ V c/ξ of a full family of the point's "
+               "block; the force on the wall goes to the history as wall_<name>_x/_y/_z",
+               {{.key = "name", .type = VT::text, .description = "name of the wall (history columns)", .required = true},
+                {.key = "point", .type = VT::point, .description = "a point of the plane at t = 0 (m)", .required = true},
+                {.key = "normal", .type = VT::point, .description = "normal of the plane, toward the bodies (any length)",
+                 .required = true},
+                {.key = "speed", .unit = Unit::velocity, .default_yaml = "0",
+                 .description = "velocity of the plane along its normal (m/s)"},
+                {.key = "stiffness_factor", .default_yaml = "0.5", .range = positive,
+                 .description = "penalty stiffness as a fraction of a full family's; 0.5 keeps a surface point no stiffer "
+                                "than an interior one, so the stable time step holds"}}});
   s.push_back({"solver", "explicit central-difference (velocity Verlet) time integration",
                {{.key = "end_time", .unit = Unit::time, .range = positive, .description = "simulated time (s); or num_steps",
                  .required = true, .one_of = "duration"},

@@ -1,5 +1,6 @@
 #include "peridot/materials/material.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -61,6 +62,15 @@ double critical_stretch_from_energy(double fracture_energy, double c0, double ho
   return std::sqrt(fracture_energy / (problem.thickness * c0 * influence_moment(influence, horizon, 3)));
 }
 
+// Stable time step of a correspondence block (docs/models/correspondence.md): the Silling–Askari bound of the
+// PMB solid with the same P-wave modulus M = K + 4G/3 (a PMB solid, ν = 1/4, has M = 1.8K), but never less
+// stiff than the PMB solid of the same K, plus the hourglass bond stiffness c_hg = 18 C_HG K/(πδ⁴) (force.hpp):
+//   c = 18 [max(K, M/1.8) + C_HG K] / (π δ⁴).
+double correspondence_stable_micromodulus(const MaterialSpec& spec, double horizon) {
+  const double K = spec.elastic.bulk_modulus, M = K + 4 * spec.elastic.shear_modulus / 3;
+  return 18 * (std::max(K, M / 1.8) + spec.hourglass_coefficient * K) / (std::numbers::pi * std::pow(horizon, 4));
+}
+
 }  // namespace
 
 MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const Problem& problem) {
@@ -89,6 +99,16 @@ MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const 
         p.alpha_volumetric = 2 * planar_bulk_modulus(spec.elastic, problem.plane);
         p.alpha_deviatoric = 8 * spec.elastic.shear_modulus;
       }
+      break;
+    case ModelKind::correspondence:
+      p.stable_micromodulus = correspondence_stable_micromodulus(spec, horizon);
+      p.yield_stress = spec.yield_stress;
+      p.constitutive_law = spec.constitutive_law;
+      p.hardening_exponent = spec.hardening_exponent;
+      p.reference_plastic_strain = spec.reference_plastic_strain;
+      p.rate_exponent = spec.rate_exponent;
+      p.reference_strain_rate = spec.reference_strain_rate;
+      p.hourglass_coefficient = spec.hourglass_coefficient;
       break;
   }
   if (spec.model == ModelKind::lps_plastic) {

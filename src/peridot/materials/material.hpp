@@ -37,6 +37,13 @@ struct MaterialParams {
   double relaxation_time = 0;
   double viscous_decay = 1;
   double viscous_ramp = 0;
+  /// correspondence: the law and its J2 parameters (as in MaterialSpec), and the hourglass coefficient C_HG.
+  ConstitutiveLawKind constitutive_law = ConstitutiveLawKind::hypoelastic;
+  double hardening_exponent = std::numeric_limits<double>::infinity();
+  double reference_plastic_strain = 1;
+  double rate_exponent = std::numeric_limits<double>::infinity();
+  double reference_strain_rate = 1;
+  double hourglass_coefficient = 0;
   /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
   /// the Silling–Askari stable time step estimate for every model.
   double stable_micromodulus = 0;

@@ -194,6 +194,67 @@ is D per unit volume.)",
   };
 }
 
+ModelDoc correspondence_doc() {
+  return {
+      .summary = R"(A non-ordinary state-based (correspondence) solid: each point's family gives it a nonlocal deformation
+gradient F, a classical constitutive law turns the motion into a Cauchy stress, and the first Piola–Kirchhoff
+stress is mapped back to bond forces. The law works in the unrotated frame of the Flanagan–Taylor polar
+decomposition, so large rotations are objective. Two laws are available: hypoelastic (rate form of Hooke's
+law) and Foster's J2 viscoplasticity (power-law strain hardening and rate sensitivity, radial return with an
+implicit rate term), fitted in the reference to 6061-T6 aluminium. A weak bond spring on the non-affine part
+of each bond's deformation controls the zero-energy (hourglass) modes.)",
+      .equations = R"(Notation: ξ the reference bond, Y = ξ + u′ − u the deformed bond, ω the influence function times the
+partial-volume factor, V the neighbour volume; sums run over a point's bonds. Numbers (N) are those of
+Foster, Silling & Chen (2010).
+
+- (10) shape tensor K = Σ ω ξ⊗ξ V; (13) F = [Σ ω Y⊗ξ V] K⁻¹ and Ḟ = [Σ ω (v′ − v)⊗ξ V] K⁻¹ from u^{n+1}
+  and the mid-step velocity v^{n+½}
+- (14) L = Ḟ F⁻¹ at mid-step, F^{n+½} = F^{n+1} − ½Δt Ḟ; (15) D, W its symmetric and skew parts
+- (16–18) Flanagan–Taylor: F = V R, R_{n+1} = Q R_n with the Cayley increment Q, and d = Rᵀ D R
+- hypoelastic law: τ_{n+1} = τ_n + Δt (λ tr(d) I + 2G d), λ = K − ⅔G
+- J2 law: flow stress G(εp, ε̇p) = Y (1 + εp/ε0)^(1/n) (1 + ε̇p/ε̇0)^(1/m) (58–59); trial S^tr = S_n + 2G dev(d)Δt
+  (49); elastic when |S^tr| ≤ √(2/3) G(εp_n, 0); otherwise Δλ solves |S^tr| − 2GΔλ − √(2/3) G(εp_n, √(2/3)Δλ/Δt) = 0
+  (60) and S = √(2/3) G S^tr/|S^tr| (50, 61); pressure p_{n+1} = p_n + K tr(d)Δt (52); εp from (56–57)
+- (23) σ = R τ Rᵀ; (24) P = det(F) σ F⁻ᵀ; (25) force state T⟨ξ⟩ = ω P K⁻¹ ξ; (4) f = Σ (T⟨ξ⟩ − T′⟨−ξ⟩) V
+- hourglass state T^hg⟨ξ⟩ = ω (c_hg/|ξ|) ((Y − Fξ)·n) n, n = Y/|Y|, c_hg = 18 C_HG K/(πδ⁴)
+  (reference/algorithms.md §2a); C_HG is hourglass_coefficient
+- (62) Green–Lagrange strain E = ½(FᵀF − I), an output only
+
+Energy bookkeeping (history CSV): strain_energy is the elastic energy Σ J (p²/(2K) + S:S/(4G)) V;
+dissipated_energy the inelastic work Σ ∫ J S : (dev(d) − Ṡ/(2G)) dt V (the plastic work of J2, 0 for the
+hypoelastic law); hourglass_work the work of the hourglass forces, −Σ ½(f_hg^n + f_hg^{n+1})·Δu V per step.
+With the kinetic energy they balance the external work. Exodus output adds deformation_gradient_*,
+cauchy_stress_*, von_mises_stress, green_lagrange_strain_*, equivalent_plastic_strain and dissipation.
+
+Stable time step: the Silling–Askari bound with c = 18 [max(K, M/1.8) + C_HG K]/(πδ⁴), M = K + 4G/3 the
+P-wave modulus: the PMB solid with the same wave speed (a PMB solid has M = 1.8K), never softer than the
+PMB solid of the same K, stiffened by the hourglass springs. It is an estimate, scaled by
+solver.safety_factor.)",
+      .restrictions = R"(- 3D only.
+- No damage: bond failure inside K, F and the force state is not implemented (a deck with damage is refused).
+- A correspondence body may share bonds with another correspondence body, but not with a body of another
+  model: the run stops at set-up naming both bodies. Keep such bodies more than a horizon apart.
+- Rate form: an initial displacement produces no stress (the stress integrates the motion from t = 0).
+- Zero-energy modes are only damped by the hourglass springs: hourglass_coefficient 0 lets them grow.
+- K⁻¹ is recomputed every step (the eigenvalue check refuses a point whose family is nearly flat, λ_min/λ_max
+  below 10⁻⁸, with the point named).)",
+      .further_references = {"Flanagan & Taylor, CMAME 62 (1987) 305-320 (incremental rotation)",
+                             "Littlewood, Peridigm hourglass control (reference/algorithms.md §2a)"},
+      .example = R"(materials:
+  aluminium:
+    model: correspondence
+    density: 2.7 g/cm^3
+    youngs_modulus: 68.9 GPa
+    poisson_ratio: 0.333
+    constitutive_law: j2_viscoplastic
+    yield_stress: 276 MPa
+    hardening_exponent: 13.5
+    reference_plastic_strain: 0.001
+    rate_exponent: 44
+    reference_strain_rate: 1000 1/s)",
+  };
+}
+
 }  // namespace
 
 const std::vector<ModelInfo>& material_models() {
@@ -217,6 +278,24 @@ const std::vector<ModelInfo>& material_models() {
         {.key = "relaxation_time", .unit = Unit::time, .range = positive,
          .description = "τ_b (s): relaxation time of the back extension (Peridigm 'tau b')", .required = true}},
        lps_viscoelastic_doc()},
+      {"correspondence", ModelKind::correspondence,
+       "non-ordinary state-based (correspondence) solid: hypoelastic or J2 viscoplastic law, hourglass control",
+       "Foster, Silling & Chen, IJNME 81 (2010) 1242-1258; papers/000", false,
+       {{.key = "constitutive_law", .type = ValueType::choice, .description = "the law in the unrotated frame",
+         .required = true, .choices = {"hypoelastic", "j2_viscoplastic"}},
+        {.key = "yield_stress", .unit = Unit::pressure, .range = positive,
+         .description = "Y (Pa), quasi-static yield stress; j2_viscoplastic (required there)"},
+        {.key = "hardening_exponent", .range = positive,
+         .description = "n (-): G ∝ (1 + εp/ε0)^(1/n); j2_viscoplastic; omit for no strain hardening"},
+        {.key = "reference_plastic_strain", .range = positive,
+         .description = "ε0 (-), with hardening_exponent; j2_viscoplastic"},
+        {.key = "rate_exponent", .range = positive,
+         .description = "m (-): G ∝ (1 + ε̇p/ε̇0)^(1/m); j2_viscoplastic; omit for rate independence"},
+        {.key = "reference_strain_rate", .unit = Unit::rate, .range = positive,
+         .description = "ε̇0 (1/s), with rate_exponent; j2_viscoplastic"},
+        {.key = "hourglass_coefficient", .default_yaml = "0.05", .range = non_negative,
+         .description = "C_HG (-): hourglass bond stiffness 18 C_HG K/(πδ⁴); 0 = no control"}},
+       correspondence_doc(), 3},
   };
   return models;
 }

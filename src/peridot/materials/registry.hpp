@@ -32,6 +32,7 @@ struct ModelInfo {
   bool bond_based = false;
   std::vector<KeySpec> extra_keys;  ///< model parameters beyond common_material_keys()
   ModelDoc doc;
+  int dimension = 0;  ///< 0: 2D and 3D; 3: 3D only (the deck refuses the model in 2D)
 };
 
 const std::vector<ModelInfo>& material_models();

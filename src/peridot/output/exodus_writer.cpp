@@ -57,13 +57,19 @@ std::vector<std::string> nodal_variable_names(int dimension, const std::vector<s
 const std::vector<double>& optional_field(const State& state, const std::string& name) {
   if (name == "equivalent_plastic_strain") return state.history.plastic_strain;
   if (name == "dissipation") return state.history.dissipation;
-  return state.fragment;
+  if (name == "fragment") return state.fragment;
+  return state.point_outputs.at(name);
 }
 
 }  // namespace
 
 const std::vector<std::string>& ExodusWriter::optional_fields() {
-  static const std::vector<std::string> names = {"equivalent_plastic_strain", "dissipation", "fragment"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all = {"equivalent_plastic_strain", "dissipation", "fragment"};
+    const auto& correspondence = correspondence_output_names();
+    all.insert(all.end(), correspondence.begin(), correspondence.end());
+    return all;
+  }();
   return names;
 }
 

@@ -18,6 +18,8 @@
 //    and after those the optional fields the writer was made with (extra_fields), in the order given:
 //      equivalent_plastic_strain, dissipation   (State::history: ε̄p, dissipated energy density J/m³)
 //      fragment                                  (State::fragment: the fragment label, damage/fragments.hpp)
+//      deformation_gradient_xx … von_mises_stress … green_lagrange_strain_zx
+//                                                (State::point_outputs, correspondence_output_names())
 //    force_density is State::force (internal force density). volume is constant, yet written every frame:
 //    an Exodus nodal variable has a value per time step, and a reader looking at frame k of a variable
 //    written only at frame 1 would see fill values. The cost is one double per point per frame.

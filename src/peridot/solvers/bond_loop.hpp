@@ -3,6 +3,7 @@
 // neighbour volume it sees, and the per-block dispatch to compile-time dimension and model types.
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "peridot/materials/dispatch.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
@@ -57,8 +58,9 @@ inline double neighbor_volume(const ModelContext& ctx, std::size_t i, std::size_
   return v * partial_volume_factor(xi, horizon, ctx.partial_volume_radius);
 }
 
-/// Runs body(Dim, Model, params, range) for every block, with the dimension and the block's model as
-/// compile-time types.
+/// Runs body(Dim, Model, params, range) for every block of a bond-kernel model (pmb, lps, …), with the
+/// dimension and the block's model as compile-time types. Correspondence blocks are skipped: they have no
+/// bond kernel (solvers/correspondence_blocks.hpp computes their force).
 template <class Body>
 void for_each_block(const ModelContext& ctx, Body&& body) {
   for (std::size_t b = 0; b < ctx.ranges.size(); ++b) {
@@ -66,8 +68,21 @@ void for_each_block(const ModelContext& ctx, Body&& body) {
     const BlockRange range = ctx.ranges[b];
     if (range.begin == range.end) continue;
     with_dimension(ctx.disc->dimension, [&](auto dim) {
-      with_model(p.model, [&](auto model) { body(dim, model, p, range); });
+      with_model(p.model, [&](auto model) {
+        if constexpr (!std::is_same_v<decltype(model), CorrespondenceTag>) body(dim, model, p, range);
+      });
     });
+  }
+}
+
+/// Runs body(Dim, params, range) for every block, whatever its model (loops over geometry only: weighted
+/// volume, damage, stable time step).
+template <class Body>
+void for_each_block_geometry(const ModelContext& ctx, Body&& body) {
+  for (std::size_t b = 0; b < ctx.ranges.size(); ++b) {
+    const BlockRange range = ctx.ranges[b];
+    if (range.begin == range.end) continue;
+    with_dimension(ctx.disc->dimension, [&](auto dim) { body(dim, ctx.params[b], range); });
   }
 }
 

@@ -49,7 +49,9 @@ namespace {
 inline double other_block_force_scalar(const MaterialParams& pj, const KernelFields& s, std::size_t j,
                                        std::uint64_t reverse_bond, double e, double xi) {
   const double omega = influence(pj.influence, xi, pj.horizon);
-  return with_model(pj.model, [&](auto model) { return model.force_scalar(pj, s, j, reverse_bond, e, xi, omega); });
+  // Bonds between a correspondence block and another model's block are refused at set-up
+  // (CorrespondenceBlocks), so an interface bond never reaches a correspondence neighbour.
+  return with_bond_model(pj.model, [&](auto model) { return model.force_scalar(pj, s, j, reverse_bond, e, xi, omega); });
 }
 
 /// Critical stretch of a bond: the smaller of its two blocks' (j outside range = another block).
@@ -65,7 +67,7 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
   m.assign(n, 0.0);
   const double* x = ctx.disc->x.data();
   const BondList& bonds = *ctx.bonds;
-  for_each_block(ctx, [&](auto dim, auto, const MaterialParams& p, BlockRange range) {
+  for_each_block_geometry(ctx, [&](auto dim, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
@@ -242,7 +244,7 @@ double stable_time_step(const ModelContext& ctx) {
   const double* x = ctx.disc->x.data();
   const BondList& bonds = *ctx.bonds;
   double dt = std::numeric_limits<double>::infinity();
-  for_each_block(ctx, [&](auto dim, auto, const MaterialParams& p, BlockRange range) {
+  for_each_block_geometry(ctx, [&](auto dim, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static) reduction(min : dt)
     for (std::size_t i = range.begin; i < range.end; ++i) {

@@ -42,10 +42,14 @@ double point_field(const State& state, const std::string& field, std::size_t i) 
 }
 
 /// The optional Exodus fields a problem needs: plastic strain and dissipation with an inelastic model,
-/// fragment labels with damage.
+/// fragment labels with damage, and with correspondence blocks also F, σ, von Mises stress and the
+/// Green–Lagrange strain (CorrespondenceBlocks::output_field_names).
 std::vector<std::string> optional_exodus_fields(const Simulation& sim) {
   std::vector<std::string> fields;
-  if (sim.model().bond_history_arrays() > 0) fields = {"equivalent_plastic_strain", "dissipation"};
+  if (sim.model().bond_history_arrays() > 0 || sim.has_correspondence())
+    fields = {"equivalent_plastic_strain", "dissipation"};
+  if (sim.has_correspondence())
+    for (const std::string& name : CorrespondenceBlocks::output_field_names()) fields.push_back(name);
   if (sim.model().any_damage()) fields.push_back("fragment");
   return fields;
 }
@@ -112,6 +116,9 @@ class History {
     std::vector<std::string> columns = {"time", "step", "kinetic_energy", "strain_energy", "external_work",
                                         "momentum_x", "momentum_y", "momentum_z", "max_damage", "dissipated_energy",
                                         "fragments"};
+    if (sim.has_correspondence()) columns.push_back("hourglass_work");
+    for (const RigidWall& wall : sim.walls().walls())
+      for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("wall_" + wall.name + axis);
     for (const std::string& name : problem.output.reaction_sets) {
       for (const NodeSet& set : sim.node_sets())
         if (set.name == name) reaction_sets_.push_back(&set);
@@ -129,6 +136,11 @@ class History {
     std::vector<double> row = {s.time, static_cast<double>(s.step), t.kinetic_energy, t.strain_energy,
                                sim_.external_work(), t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage,
                                t.dissipated_energy, static_cast<double>(t.fragments)};
+    if (sim_.has_correspondence()) row.push_back(t.hourglass_work);
+    for (std::size_t w = 0; w < sim_.walls().walls().size(); ++w) {
+      const Vec3 force = sim_.walls().force_on_wall(w);
+      row.insert(row.end(), {force.x, force.y, force.z});
+    }
     for (const NodeSet* set : reaction_sets_) {
       Vec3 r = sim_.reaction(*set);
       row.insert(row.end(), {r.x, r.y, r.z});

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "peridot/damage/fragments.hpp"
 
 namespace peridot {
@@ -26,6 +28,8 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
     neighborhood.horizon_of_block.push_back(body.horizon);
   }
   bonds_ = build_neighborhood(disc_, neighborhood);
+  correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_);
+  walls_ = std::make_unique<RigidWalls>(problem_, model_);
 
   if (!problem_.no_fail_sets.empty()) {
     model_.no_fail.assign(disc_.num_points(), 0);
@@ -71,12 +75,12 @@ void Simulation::initialize() {
   // No time passes at t = 0: the history starts from the initial displacement with Δt = 0 (an initial
   // displacement beyond yield flows plastically at once; a viscous back extension starts at 0).
   set_time_step(model_.params, 0.0);
-  compute_forces();
+  compute_forces(0.0);
   if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, 0.0);
   set_time_step(model_.params, dt_);
 }
 
-void Simulation::compute_forces() {
+void Simulation::compute_forces(double dt) {
   // Bond failure is checked in the first pass that computes every bond's stretch (on u^{n+1}, before any
   // force uses the bond).
   const bool fail_in_force_pass = !any_dilatation_ || model_.bond_failure_after_force;
@@ -85,6 +89,13 @@ void Simulation::compute_forces() {
   if (history_arrays_ > 0) prepare_history(model_, state_.u, state_.dilatation, state_.history);
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && fail_in_force_pass,
                          &state_.history);
+  if (!walls_->empty()) walls_->compute(state_.u, state_.time, wall_force_);
+  if (!has_correspondence()) return;
+  try {
+    correspondence_->compute_force(state_.u, state_.v, dt, state_.force, state_.history);
+  } catch (const NumericalError& e) {
+    throw NumericalError(fmt::format("at step {}, time {:.6g} s: {}", state_.step, state_.time, e.what()));
+  }
 }
 
 void Simulation::kick(double half_dt) {
@@ -92,13 +103,20 @@ void Simulation::kick(double half_dt) {
   double* v = state_.v.data();
   const double* f = state_.force.data();
   const double* b = state_.body_force.data();
+  const double* c = walls_->empty() ? nullptr : wall_force_.data();
   for (std::size_t block = 0; block < model_.ranges.size(); ++block) {
     const BlockRange range = model_.ranges[block];
     const double scale = half_dt / model_.params[block].density;
     const double decay = std::exp(-problem_.solver.damping * half_dt);
+    if (c) {
 #pragma omp parallel for schedule(static)
-    for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
-      if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k]);
+      for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
+        if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k] + c[k]);
+    } else {
+#pragma omp parallel for schedule(static)
+      for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
+        if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k]);
+    }
   }
 }
 
@@ -117,11 +135,14 @@ void Simulation::step() {
     const double* v = state_.v.data();  // v^{n+½}: Δu = Δt v^{n+½}
     const double* f = state_.force.data();
     const double* b = state_.body_force.data();
+    const double* c = walls_->empty() ? nullptr : wall_force_.data();
     double w = 0;
     for (std::uint64_t k : prescribed) w -= 0.5 * f[k] * disc_.volume[k / 3] * dt * v[k];
-    if (loads_->has_body_force())
+    const bool body_force = loads_->has_body_force();
+    if (body_force || c)
       w += deterministic_sum(dofs, [&](std::size_t k) {
-        return kind[k] == DofKind::free ? 0.5 * b[k] * disc_.volume[k / 3] * dt * v[k] : 0.0;
+        const double applied = (body_force ? b[k] : 0.0) + (c ? c[k] : 0.0);
+        return kind[k] == DofKind::free ? 0.5 * applied * disc_.volume[k / 3] * dt * v[k] : 0.0;
       });
     return w;
   };
@@ -139,7 +160,7 @@ void Simulation::step() {
   state_.time = t + dt;
   state_.step += 1;
   loads_->update_body_force(state_.time, state_.body_force);
-  compute_forces();
+  compute_forces(dt);
   if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
   external_work_ += work_increment();
 
@@ -171,6 +192,7 @@ void Simulation::update_output_fields() {
   compute_damage(model_, state_.damage);
   if (any_damage_) label_fragments(bonds_, disc_.input_id, state_.fragment);
   if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation, false, &state_.history);
+  if (has_correspondence()) correspondence_->write_point_outputs(state_);
 }
 
 Totals Simulation::totals() {
@@ -182,6 +204,10 @@ Totals Simulation::totals() {
     return 0.5 * density(i) * disc_.volume[i] * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
   });
   compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_, &state_.history);
+  if (has_correspondence()) {
+    correspondence_->strain_energy_density(energy_density_);
+    totals.hourglass_work = correspondence_->hourglass_work();
+  }
   totals.strain_energy = deterministic_sum(n, [&](std::size_t i) { return energy_density_[i] * disc_.volume[i]; });
   const double* dissipation = state_.history.dissipation.data();
   totals.dissipated_energy = deterministic_sum(n, [&](std::size_t i) { return dissipation[i] * disc_.volume[i]; });

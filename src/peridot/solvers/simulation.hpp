@@ -3,18 +3,23 @@
 // The explicit solver is velocity Verlet (papers/003, "Temporal discretization"):
 //   v^{n+½} = v^n + (Δt/2) a^n,  u^{n+1} = u^n + Δt v^{n+½},  v^{n+1} = v^{n+½} + (Δt/2) a^{n+1},
 // with bond failure evaluated on u^{n+1} before the force, as Peridigm does. Inelastic models solve their
-// return map on u^{n+1} before the force and commit their history after it, once per step.
+// return map on u^{n+1} before the force and commit their history after it, once per step. Correspondence
+// blocks update their stress over the step from u^{n+1} and v^{n+1/2} (correspondence_blocks.hpp). Rigid
+// walls add their penalty force density to the internal and body forces in both kicks, and their work to
+// the external work (trapezoidal, like the body force).
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "peridot/contact/rigid_wall.hpp"
 #include "peridot/deck/problem.hpp"
 #include "peridot/geometry/discretize.hpp"
 #include "peridot/loads/loads.hpp"
 #include "peridot/loads/node_sets.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
 #include "peridot/damage/critical_stretch.hpp"
+#include "peridot/solvers/correspondence_blocks.hpp"
 #include "peridot/solvers/internal_force.hpp"
 #include "peridot/state/fields.hpp"
 
@@ -25,6 +30,7 @@ struct Totals {
   double kinetic_energy = 0;  ///< J
   double strain_energy = 0;   ///< J, stored (elastic) energy
   double dissipated_energy = 0;  ///< J, plastic work or viscous dissipation since t = 0
+  double hourglass_work = 0;  ///< J, work of the correspondence hourglass forces since t = 0 (stored-energy sign)
   Vec3 momentum;              ///< kg·m/s
   double max_damage = 0;
   std::size_t fragments = 0;  ///< connected sets of points through intact bonds
@@ -57,7 +63,14 @@ class Simulation {
   /// One Verlet step. Throws NumericalError naming step, time, point and position on a non-finite value.
   void step();
 
-  /// Refreshes damage and dilatation of every point (for output; the step keeps only what it needs).
+  /// The rigid walls of the deck (contact/rigid_wall.hpp); empty() when none.
+  const RigidWalls& walls() const { return *walls_; }
+
+  /// Whether some block uses the correspondence model (its history has an hourglass_work column).
+  bool has_correspondence() const { return correspondence_ && !correspondence_->empty(); }
+
+  /// Refreshes damage and dilatation of every point, and the correspondence fields (for output; the step
+  /// keeps only what it needs).
   void update_output_fields();
   Totals totals();
   /// Reaction force on a node set: −Σ f_i V_i over its points (N).
@@ -66,7 +79,9 @@ class Simulation {
   std::size_t memory_bytes() const;
 
  private:
-  void compute_forces();
+  /// Internal force at the current u (and, for correspondence blocks, the stress update over dt with the
+  /// current, mid-step, velocity).
+  void compute_forces(double dt);
   void kick(double half_dt);
 
   Problem problem_;
@@ -75,6 +90,9 @@ class Simulation {
   std::vector<NodeSet> node_sets_;
   ModelContext model_;
   std::unique_ptr<Loads> loads_;
+  std::unique_ptr<CorrespondenceBlocks> correspondence_;
+  std::unique_ptr<RigidWalls> walls_;
+  VectorField wall_force_;  ///< penalty force density of the walls (N/m³), at the time of the last force
   State state_;
   std::vector<double> energy_density_;
   double stable_dt_ = 0, dt_ = 0;

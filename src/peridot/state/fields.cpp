@@ -22,4 +22,19 @@ void State::size_history(std::size_t nnz, int arrays) {
   for (int k = 0; k < 2; ++k) history.bond[k].assign(k < arrays ? nnz : 0, 0.0);
 }
 
+const std::vector<std::string>& correspondence_output_names() {
+  static const std::vector<std::string> names = [] {
+    const std::string axes = "xyz";
+    std::vector<std::string> all;
+    for (char r : axes)
+      for (char c : axes) all.push_back(std::string("deformation_gradient_") + r + c);
+    const char* const symmetric[] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+    for (const char* rc : symmetric) all.push_back(std::string("cauchy_stress_") + rc);
+    all.push_back("von_mises_stress");
+    for (const char* rc : symmetric) all.push_back(std::string("green_lagrange_strain_") + rc);
+    return all;
+  }();
+  return names;
+}
+
 }  // namespace peridot

@@ -4,6 +4,7 @@
 // three components of a neighbour from one cache line. 2D problems store z = 0.
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -82,10 +83,17 @@ struct State {
   std::vector<double> weighted_volume;  ///< m (m⁵; 2D m⁴·h) (LPS)
   MaterialHistory history;
   std::vector<double> fragment;  ///< fragment label (damage/fragments.hpp), when the problem has damage
+  /// Output-only point fields of the correspondence model, by Exodus name (deformation_gradient_xx, …;
+  /// solvers/correspondence_blocks.hpp), filled when output is written; zero at other models' points.
+  std::map<std::string, std::vector<double>> point_outputs;
   /// Sizes the point fields for n points (zeros); the bond history stays empty until size_history.
   void resize(std::size_t n);
   /// Allocates `arrays` (1 or 2) per-bond history arrays of nnz zeros.
   void size_history(std::size_t nnz, int arrays);
 };
+
+/// Names of State::point_outputs: deformation_gradient_xx … _zz (9, row by row), cauchy_stress_xx, _yy, _zz,
+/// _xy, _yz, _zx, von_mises_stress, green_lagrange_strain_xx, _yy, _zz, _xy, _yz, _zx.
+const std::vector<std::string>& correspondence_output_names();
 
 }  // namespace peridot

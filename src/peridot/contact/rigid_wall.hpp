@@ -1,0 +1,49 @@
+#pragma once
+// Rigid, frictionless walls (an anvil): planes that the points cannot cross, by penalty contact.
+// A wall is the plane through p(t) = p0 + s t n with unit normal n toward the bodies (speed s along n).
+// A point at y = x + u behind it, g = (y − p(t))·n < 0, gets the force density
+//   b = κ (−g) n,   κ = stiffness_factor × Σ_j V_j c/ξ_j over a full family (N/m⁴),
+// with c the block's stable micromodulus (materials/material.hpp): the point stiffness of the
+// Silling–Askari time step bound, 2π c δ² in 3D (∫ 4πξ² c/ξ dξ) and 2π h c δ in 2D. The default factor 0.5
+// makes a point of a flat surface (about half a family) no stiffer than an interior point, so the stable
+// time step estimate still holds. The force is normal only (frictionless) and elastic: the penalty stores
+// ½ κ g² V and gives it back, so the work of a fixed wall over a whole contact is zero. Every wall acts on
+// every point. The force on the wall is −Σ b V, summed in a thread-independent order.
+#include <string>
+#include <vector>
+
+#include "peridot/core/vec3.hpp"
+#include "peridot/deck/problem.hpp"
+#include "peridot/solvers/internal_force.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+struct RigidWall {
+  std::string name;
+  Vec3 point;         ///< p0 (m)
+  Vec3 normal;        ///< n, unit, toward the bodies
+  double speed = 0;   ///< s (m/s)
+  double stiffness_factor = 0.5;
+};
+
+class RigidWalls {
+ public:
+  RigidWalls(const Problem& problem, const ModelContext& model);
+  bool empty() const { return walls_.empty(); }
+  const std::vector<RigidWall>& walls() const { return walls_; }
+
+  /// Penalty force density of every wall on every point at time t into b (N/m³; zero where no contact), and
+  /// the force each wall receives (N), −Σ b V of its own contacts.
+  void compute(const VectorField& u, double t, VectorField& b);
+  /// Force on wall w from the last compute (N).
+  Vec3 force_on_wall(std::size_t w) const { return force_on_wall_[w]; }
+
+ private:
+  const ModelContext* model_;
+  std::vector<RigidWall> walls_;
+  std::vector<double> point_stiffness_;  ///< κ / stiffness_factor per block (N/m⁴)
+  std::vector<Vec3> force_on_wall_;
+};
+
+}  // namespace peridot

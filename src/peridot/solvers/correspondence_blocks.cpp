@@ -1,0 +1,189 @@
+// The correspondence blocks inside the explicit solver: set-up from the resolved materials, the per-step
+// kinematics → stress → force sequence, and the energy and field outputs (correspondence_blocks.hpp).
+#include "peridot/solvers/correspondence_blocks.hpp"
+
+#include <cmath>
+#include <string>
+#include <variant>
+
+#include <fmt/format.h>
+
+#include "peridot/correspondence/force.hpp"
+#include "peridot/correspondence/hypoelastic.hpp"
+#include "peridot/correspondence/j2_viscoplastic.hpp"
+#include "peridot/correspondence/kinematics.hpp"
+#include "peridot/materials/registry.hpp"
+#include "peridot/solvers/simulation.hpp"
+
+namespace peridot {
+
+using namespace correspondence;
+
+namespace {
+
+using AnyBlock = std::variant<CorrespondenceBlock<Hypoelastic>, CorrespondenceBlock<J2Viscoplastic>>;
+
+AnyBlock make_block(const MaterialParams& p, BlockRange range) {
+  const double K = p.elastic.bulk_modulus, G = p.elastic.shear_modulus;
+  if (p.constitutive_law == ConstitutiveLawKind::hypoelastic) return CorrespondenceBlock<Hypoelastic>({K, G}, range);
+  J2Viscoplastic law;
+  law.bulk = K;
+  law.shear = G;
+  law.yield_stress = p.yield_stress;
+  law.hardening_exponent = p.hardening_exponent;
+  law.rate_exponent = p.rate_exponent;
+  law.reference_plastic_strain = p.reference_plastic_strain;
+  law.reference_plastic_strain_rate = p.reference_strain_rate;
+  return CorrespondenceBlock<J2Viscoplastic>(law, range);
+}
+
+/// Refuses a bond between a correspondence block and a block of another model (see the header).
+void check_interfaces(const Problem& problem, const ModelContext& model) {
+  const Discretization& disc = *model.disc;
+  const BondList& bonds = *model.bonds;
+  for (std::size_t b = 0; b < model.ranges.size(); ++b) {
+    if (model.params[b].model != ModelKind::correspondence) continue;
+    for (std::size_t i = model.ranges[b].begin; i < model.ranges[b].end; ++i)
+      for (std::uint64_t k = bonds.offsets[i]; k < bonds.offsets[i + 1]; ++k) {
+        const std::size_t other = static_cast<std::size_t>(disc.block[bonds.neighbors[k]]);
+        if (model.params[other].model == ModelKind::correspondence) continue;
+        const BodySpec& body = problem.bodies[b];
+        throw InputError(body.pos, fmt::format(
+            "bodies.{}: this correspondence body is bonded to body '{}' (material {}, model {}), at its point "
+            "({:g}, {:g}, {:g}) m; "
+            "bonds between a correspondence body and a body of another model are not supported: keep the bodies "
+            "more than a horizon apart or give both the correspondence model",
+            body.name, problem.bodies[other].name, problem.material_of(problem.bodies[other]).name,
+            model_info(model.params[other].model).name, disc.x(i, 0),
+            disc.x(i, 1), disc.x(i, 2)));
+      }
+  }
+}
+
+// Symmetric tensors in the order of correspondence_output_names(): xx yy zz xy yz zx.
+const int symmetric_index[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
+
+}  // namespace
+
+struct CorrespondenceBlocks::Impl {
+  const ModelContext* model = nullptr;
+  CorrespondenceContext ctx;
+  KinematicFields kin;
+  StressFields stress;
+  std::vector<AnyBlock> blocks;
+  std::vector<std::size_t> block_index;  ///< the ModelContext block of each entry of `blocks`
+  VectorField hourglass_force, previous_hourglass_force, previous_u;
+  bool have_previous = false;
+  double hourglass_work = 0;
+};
+
+CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelContext& model)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.model = &model;
+  std::vector<BlockGeometry> geometry;
+  for (std::size_t b = 0; b < model.params.size(); ++b) {
+    const MaterialParams& p = model.params[b];
+    geometry.push_back({p.horizon, p.influence});
+    if (p.model != ModelKind::correspondence || model.ranges[b].begin == model.ranges[b].end) continue;
+    m.blocks.push_back(make_block(p, model.ranges[b]));
+    m.block_index.push_back(b);
+  }
+  if (m.blocks.empty()) return;
+  check_interfaces(problem, model);
+  const std::size_t n = model.disc->num_points();
+  m.ctx = make_correspondence_context(*model.disc, *model.bonds, geometry, model.partial_volume_radius);
+  for (std::size_t b : m.block_index) {
+    const MaterialParams& p = model.params[b];
+    m.ctx.hourglass_stiffness[b] = hourglass_stiffness(p.hourglass_coefficient, p.elastic.bulk_modulus, p.horizon);
+  }
+  m.stress.resize(n);
+  m.kin.shape_inverse = TensorField(n);
+  m.kin.deformation_gradient.assign(n, Mat3::Identity());
+  m.kin.deformation_gradient_rate = TensorField(n);
+  m.hourglass_force.resize(n);
+}
+
+CorrespondenceBlocks::~CorrespondenceBlocks() = default;
+
+bool CorrespondenceBlocks::empty() const { return impl_->blocks.empty(); }
+
+void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField& v, double dt, VectorField& f,
+                                         MaterialHistory& history) {
+  Impl& m = *impl_;
+  for (AnyBlock& any : m.blocks)
+    std::visit([&](auto& block) { compute_kinematics(m.ctx, u, v, m.kin, block.range); }, any);
+  for (AnyBlock& any : m.blocks)
+    std::visit([&](auto& block) { update_block_stress(m.ctx, m.kin, dt, block, m.stress, history.dissipation.data()); },
+               any);
+  for (AnyBlock& any : m.blocks)
+    std::visit([&](auto& block) {
+      compute_correspondence_force(m.ctx, m.kin, m.stress, u, f, block.range, &m.hourglass_force);
+    }, any);
+
+  // Work of the hourglass forces over the step, trapezoidal like the kinetic energy of velocity Verlet.
+  const double* volume = m.model->disc->volume.data();
+  if (m.have_previous) {
+    for (AnyBlock& any : m.blocks) {
+      const BlockRange range = std::visit([](auto& block) { return block.range; }, any);
+      m.hourglass_work -= deterministic_sum(range.end - range.begin, [&](std::size_t k) {
+        const std::size_t i = range.begin + k;
+        double w = 0;
+        for (int d = 0; d < 3; ++d)
+          w += 0.5 * (m.previous_hourglass_force(i, d) + m.hourglass_force(i, d)) * (u(i, d) - m.previous_u(i, d));
+        return w * volume[i];
+      });
+    }
+  }
+  m.previous_hourglass_force = m.hourglass_force;
+  m.previous_u = u;
+  m.have_previous = true;
+}
+
+void CorrespondenceBlocks::strain_energy_density(std::vector<double>& W) const {
+  const Impl& m = *impl_;
+  for (std::size_t k = 0; k < m.blocks.size(); ++k) {
+    const MaterialParams& p = m.model->params[m.block_index[k]];
+    const BlockRange range = std::visit([](auto& block) { return block.range; }, m.blocks[k]);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = range.begin; i < range.end; ++i)
+      W[i] = elastic_energy_density(m.stress.unrotated_stress.get(i), m.kin.deformation_gradient.get(i).determinant(),
+                                    p.elastic.bulk_modulus, p.elastic.shear_modulus);
+  }
+}
+
+double CorrespondenceBlocks::hourglass_work() const { return impl_->hourglass_work; }
+
+const std::vector<std::string>& CorrespondenceBlocks::output_field_names() { return correspondence_output_names(); }
+
+void CorrespondenceBlocks::write_point_outputs(State& state) const {
+  const Impl& m = *impl_;
+  const std::size_t n = m.model->disc->num_points();
+  const std::vector<std::string>& names = output_field_names();
+  std::vector<double*> out;
+  for (const std::string& name : names) {
+    std::vector<double>& field = state.point_outputs[name];
+    field.assign(n, 0.0);
+    out.push_back(field.data());
+  }
+  for (const AnyBlock& any : m.blocks)
+    std::visit([&](const auto& block) {
+      const BlockRange range = block.range;
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = range.begin; i < range.end; ++i) {
+        const Mat3 F = m.kin.deformation_gradient.get(i);
+        const Mat3 sigma = m.stress.cauchy_stress.get(i);
+        const Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());  // Green–Lagrange strain (eq 62)
+        std::size_t k = 0;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) out[k++][i] = F(r, c);
+        for (const auto& rc : symmetric_index) out[k++][i] = sigma(rc[0], rc[1]);
+        out[k++][i] = von_mises(sigma);
+        for (const auto& rc : symmetric_index) out[k++][i] = E(rc[0], rc[1]);
+        if constexpr (std::is_same_v<std::decay_t<decltype(block)>, CorrespondenceBlock<J2Viscoplastic>>)
+          state.history.plastic_strain[i] = block.history[i - range.begin].equivalent_plastic_strain;
+      }
+    }, any);
+}
+
+}  // namespace peridot

@@ -1,0 +1,55 @@
+#pragma once
+// The correspondence blocks of a problem inside the explicit solver (docs/models/correspondence.md).
+// Each step, after u^{n+1} and with the mid-step velocity v^{n+1/2} (simulation.hpp):
+//   kinematics K⁻¹, F^{n+1}, Ḟ (correspondence/kinematics.hpp, Foster et al. 2010 eqs 10, 13)
+//   → stress update over Δt (constitutive.hpp: eq 14, Flanagan–Taylor eqs 15–18, the law, eqs 23–24)
+//   → force density with hourglass control (force.hpp, eqs 4, 25; reference/algorithms.md §2a).
+// Bookkeeping for the energy balance (history CSV): the inelastic (plastic) work per point
+// (constitutive.hpp inelastic_work_increment, into MaterialHistory::dissipation), the stored elastic
+// energy J (p²/2K + S:S/4μ), and the work of the hourglass forces, −Σ ½(f_hg^n + f_hg^{n+1})·Δu V.
+// Bonds between a correspondence block and a block of another model are refused at set-up (InputError at
+// the body): the force state of a correspondence point needs its whole family in F, and an ordinary
+// neighbour's bond force has no counterpart in P K⁻¹. Two correspondence blocks may share bonds.
+#include <memory>
+#include <vector>
+
+#include "peridot/deck/problem.hpp"
+#include "peridot/solvers/internal_force.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+class CorrespondenceBlocks {
+ public:
+  /// The correspondence blocks of `model` (none: empty()). Throws InputError, at the body's position in
+  /// the deck, for a bond between a correspondence block and another model's block.
+  CorrespondenceBlocks(const Problem& problem, const ModelContext& model);
+  ~CorrespondenceBlocks();
+  CorrespondenceBlocks(const CorrespondenceBlocks&) = delete;
+  CorrespondenceBlocks& operator=(const CorrespondenceBlocks&) = delete;
+
+  bool empty() const;
+
+  /// Kinematics of (u, v), the stress update over Δt (Δt = 0: none) and the force density f (N/m³) of
+  /// every correspondence point; other points' f untouched. Adds each point's inelastic work to
+  /// history.dissipation and accumulates the hourglass work. Throws NumericalError naming the point.
+  void compute_force(const VectorField& u, const VectorField& v, double dt, VectorField& f,
+                     MaterialHistory& history);
+
+  /// Stored elastic energy density (J/m³, per reference volume) into W at every correspondence point.
+  void strain_energy_density(std::vector<double>& W) const;
+  /// Work done on the points by the hourglass forces since t = 0, with the sign of a stored energy (J):
+  /// W_hg = −Σ_steps Σ_i ½(f_hg^n + f_hg^{n+1})·(u^{n+1} − u^n) V_i.
+  double hourglass_work() const;
+  /// Fills state.point_outputs (names: output_field_names()) and history.plastic_strain (ε̄p of J2).
+  void write_point_outputs(State& state) const;
+
+  /// The Exodus fields a problem with correspondence blocks writes, beyond the standard ones.
+  static const std::vector<std::string>& output_field_names();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace peridot
