@@ -84,7 +84,7 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
 
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
                         MaterialHistory* history) {
-  double* released = history ? history->released_extension.data() : nullptr;
+  double* released = history && !history->released_extension.empty() ? history->released_extension.data() : nullptr;
   const BondFailure failure(ctx);
   const std::vector<double>& inverse_m = ctx.inverse_weighted_volume;
   const double* x = ctx.disc->x.data();

@@ -235,7 +235,9 @@ Vec3 Simulation::reaction(const NodeSet& set) const {
 std::size_t Simulation::memory_bytes() const {
   const std::size_t n = disc_.num_points(), nnz = bonds_.num_bonds();
   const std::size_t per_point =
-      sizeof(double) * (3 /*x*/ + 1 /*V*/ + 3 * 4 /*u v f b*/ + 3 /*φ θ m*/ + 4 /*ε̄p, D, r, Δε̄p*/) + 4 + 4;
+      sizeof(double) * (3 /*x*/ + 1 /*V*/ + 3 * 4 /*u v f b*/ + 3 /*φ θ m*/ + 2 /*ε̄p, D*/ +
+                        (history_arrays_ > 0 ? 4 /*return-map scratch*/ : 0)) +
+      4 + 4;
   const std::size_t per_bond = sizeof(std::uint32_t) + sizeof(std::uint8_t) +
                                (history_arrays_ > 0 ? sizeof(std::uint32_t) + history_arrays_ * sizeof(double) : 0);
   return n * per_point + (n + 1) * sizeof(std::uint64_t) + nnz * per_bond;

@@ -58,7 +58,8 @@ struct BondList {
 
 /// The history of the inelastic models: per-bond arrays parallel to BondList, per-point arrays, and the
 /// scratch of the current step's return map. Each model says what its arrays hold (materials/lps_plastic.hpp,
-/// lps_viscoelastic.hpp); the bond arrays are empty when no block needs them, the point arrays always exist.
+/// lps_viscoelastic.hpp); the bond arrays and the scratch are empty when no block needs them (State::
+/// size_history), plastic_strain and dissipation (outputs) always exist.
 struct MaterialHistory {
   std::vector<double> bond[2];                ///< lps_plastic: e^dp (bond[1] empty); lps_viscoelastic: e^b, e^d of the last step
   std::vector<double> plastic_strain;         ///< ε̄p, equivalent plastic strain (-)
@@ -88,7 +89,7 @@ struct State {
   std::map<std::string, std::vector<double>> point_outputs;
   /// Sizes the point fields for n points (zeros); the bond history stays empty until size_history.
   void resize(std::size_t n);
-  /// Allocates `arrays` (1 or 2) per-bond history arrays of nnz zeros.
+  /// Allocates `arrays` (1 or 2) per-bond history arrays of nnz zeros and the per-point scratch (after resize).
   void size_history(std::size_t nnz, int arrays);
 };
 
