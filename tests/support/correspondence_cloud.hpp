@@ -48,6 +48,7 @@ inline std::unique_ptr<CorrespondenceCloud> make_cloud(const CloudSetup& s) {
   options.partial_volume_radius = s.partial_volume ? 0.5 * s.spacing : 0.0;
   options.bond_beyond_horizon = s.partial_volume;
   cloud->bonds = build_neighborhood(cloud->disc, options);
+  build_reverse_bonds(cloud->bonds);
   cloud->ctx = correspondence::make_correspondence_context(
       cloud->disc, cloud->bonds, {correspondence::BlockGeometry{cloud->horizon, s.influence}},
       options.partial_volume_radius);

@@ -123,6 +123,7 @@ TEST(CorrKinematics, PointLeftWithTwoIntactBondsIsReported) {
   options.horizon_of_block = {2e-3};
   BondList bonds = build_neighborhood(disc, options);
   ASSERT_EQ(bonds.num_bonds(), 12u);
+  build_reverse_bonds(bonds);
   auto ctx = correspondence::make_correspondence_context(disc, bonds, {{2e-3, InfluenceKind::constant}});
   VectorField u(4), v(4);
   KinematicFields kin;

@@ -17,6 +17,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "support/homogeneous.hpp"
 
 namespace peridot {
@@ -338,10 +340,8 @@ std::vector<BarPoint> pull_bar(const testing::BlockSetup& s, double max_strain, 
   problem.solver.num_steps = steps;
   // Axial grip displacement: up to max_strain over the first 3/4 of the run, then back to end_strain.
   const double T1 = 0.75 * steps * dt, T2 = steps * dt, span = L - grip;
-  const std::string ramp = "(t <= " + std::to_string(T1) + " ? t / " + std::to_string(T1) + " * " +
-                           std::to_string(max_strain * span) + " : " + std::to_string(max_strain * span) + " - (t - " +
-                           std::to_string(T1) + ") / " + std::to_string(T2 - T1) + " * " +
-                           std::to_string((max_strain - end_strain) * span) + ")";
+  const std::string ramp = fmt::format("(t <= {0:.17g} ? t / {0:.17g} * {2:.17g} : {2:.17g} - (t - {0:.17g}) / {1:.17g} * {3:.17g})",
+                                       T1, T2 - T1, max_strain * span, (max_strain - end_strain) * span);
   BoundaryConditionSpec hold, pull;
   hold.node_set = "left";
   hold.component = 0;

@@ -41,7 +41,7 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
       if (bonds.broken[b]) continue;
       const std::size_t j = bonds.neighbors[b];
       const double wi = ctx.bond_weight[b];
-      const double wj = ctx.bond_weight[ctx.reverse_bond[b]];
+      const double wj = ctx.bond_weight[bonds.reverse[b]];
       const double* Aj = A + 9 * j;
       double xi[3];
       for (int d = 0; d < 3; ++d) xi[d] = x[3 * j + d] - x[3 * i + d];

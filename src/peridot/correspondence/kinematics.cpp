@@ -19,16 +19,14 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
   PERIDOT_REQUIRE(disc.dimension == 3, "the correspondence model is implemented in 3D only");
   const std::size_t n = disc.num_points();
   PERIDOT_REQUIRE(bonds.offsets.size() == n + 1, "bond list does not match the discretization");
+  PERIDOT_REQUIRE(bonds.reverse.size() == bonds.num_bonds(), "the correspondence gather needs build_reverse_bonds");
   CorrespondenceContext ctx;
   ctx.disc = &disc;
   ctx.bonds = &bonds;
   ctx.bond_weight.resize(bonds.num_bonds());
-  ctx.reverse_bond.resize(bonds.num_bonds());
   ctx.hourglass_stiffness.assign(blocks.size(), 0.0);
   const auto& x = disc.x;
-  // No throw inside the parallel loop (OpenMP cannot propagate it): an asymmetric list is flagged.
-  bool symmetric = true;
-#pragma omp parallel for schedule(static) reduction(&& : symmetric)
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const BlockGeometry& gi = blocks[disc.block[i]];
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
@@ -38,18 +36,8 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
       const double pair_horizon = std::max(gi.horizon, gj.horizon);
       ctx.bond_weight[b] =
           influence(gi.influence, xi, gi.horizon) * partial_volume_factor(xi, pair_horizon, partial_volume_radius);
-      // Neighbour lists are sorted (neighborhood.cpp), so the partner bond is found by bisection.
-      const auto first = bonds.neighbors.begin() + static_cast<std::ptrdiff_t>(bonds.offsets[j]);
-      const auto last = bonds.neighbors.begin() + static_cast<std::ptrdiff_t>(bonds.offsets[j + 1]);
-      const auto it = std::lower_bound(first, last, static_cast<std::uint32_t>(i));
-      if (it == last || *it != i) {
-        symmetric = false;
-        continue;
-      }
-      ctx.reverse_bond[b] = static_cast<std::uint64_t>(it - bonds.neighbors.begin());
     }
   }
-  PERIDOT_REQUIRE(symmetric, "bond list is not symmetric (j in the family of i but not i in that of j)");
   return ctx;
 }
 

@@ -32,8 +32,6 @@ struct CorrespondenceContext {
   const BondList* bonds = nullptr;
   /// Per bond i → j: ω_i(|ξ|) times the partial-volume factor (dimensionless); ω of i's block.
   std::vector<double> bond_weight;
-  /// Per bond i → j: the index of the bond j → i (the gather needs j's weight of the same pair).
-  std::vector<std::uint64_t> reverse_bond;
   /// Per block: hourglass bond stiffness c_hg (N/m⁶), 0 = no control (see force.hpp).
   std::vector<double> hourglass_stiffness;
   /// K is refused when λ_min(K)/λ_max(K) falls below this (dimensionless). At 1e-8 the relative error
@@ -41,12 +39,14 @@ struct CorrespondenceContext {
   double min_reciprocal_condition = 1e-8;
 };
 
-/// Bond weights and reverse-bond indices for a discretization whose blocks are described by `blocks`
+/// Bond weights for a discretization whose blocks are described by `blocks`
 /// (indexed by disc.block). `partial_volume_radius` as in NeighborhoodOptions (0: none); the pair horizon
 /// for the partial-volume factor is the larger of the two blocks'.
 CorrespondenceContext make_correspondence_context(const Discretization& disc, const BondList& bonds,
                                                   const std::vector<BlockGeometry>& blocks,
                                                   double partial_volume_radius = 0);
+// The gather reads j's weight of the same pair through BondList::reverse (neighbor/build_reverse_bonds),
+// which must be filled before the context is made.
 
 /// Per-point kinematic fields.
 struct KinematicFields {

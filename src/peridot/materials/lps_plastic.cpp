@@ -14,6 +14,24 @@ double plastic_yield_calibration(int dimension, PlaneKind plane) {
   return plane == PlaneKind::stress ? 2.0 : 8.0 / 3.0;  // (C2) | (C3)
 }
 
+void LpsPlastic::calibrate(ModelContext& ctx, const MaterialParams& p, BlockRange range) {
+  const double* x = ctx.disc->x.data();
+  const BondList& bonds = *ctx.bonds;
+  with_dimension(ctx.disc->dimension, [&](auto dim) {
+    constexpr int Dim = decltype(dim)::value;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      double moment = 0;  // Σ ω² ξ² V over the reference family
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+        const std::uint32_t j = bonds.neighbors[b];
+        const double xi = bond_length<Dim>(x, i, j), omega = influence(p.influence, xi, p.horizon);
+        moment += omega * omega * xi * xi * neighbor_volume(ctx, i, j, xi);
+      }
+      ctx.yield_norm_factor[i] = std::sqrt(p.yield_calibration * moment) * ctx.inverse_weighted_volume[i];
+    }
+  });
+}
+
 void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                          MaterialHistory& history, const MaterialParams& p, BlockRange range) {
   const double* x = ctx.disc->x.data();
@@ -28,15 +46,10 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
       const double alpha = p.alpha_deviatoric * ctx.inverse_weighted_volume[i];
       const double released = history.released_extension[i];  // (P8)
       double norm2 = 0, weighted = 0;  // ‖t^d_tr‖² and S = Σ (t^d_tr)²/ω V
-      double moment = 0;               // Σ ω² ξ² V over every bond, broken or not (like m)
       double along = 0;                // Σ ω ξ (e^d − e^dp_n) V over the intact bonds (P6)
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+        if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
-        if (bonds.broken[b]) {
-          const double xi = bond_length<Dim>(x, i, j), omega = influence(p.influence, xi, p.horizon);
-          moment += omega * omega * xi * xi * neighbor_volume(ctx, i, j, xi);
-          continue;
-        }
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
         const double ed = g.e - theta[i] * g.xi / p.dilatation_factor;
@@ -46,10 +59,9 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
         norm2 += t * t * v;
         weighted += t * t / omega * v;
         along += omega * g.xi * elastic * v;
-        moment += omega * omega * g.xi * g.xi * v;
       }
       const double norm = std::sqrt(norm2);
-      const double k = std::sqrt(p.yield_calibration * moment) * ctx.inverse_weighted_volume[i];  // (C1)–(C3)
+      const double k = ctx.yield_norm_factor[i];  // (C)
       const double yield_n = p.yield_stress + H * history.plastic_strain[i];
       if (!(norm > k * yield_n)) {  // elastic (also a point without intact bonds)
         history.yield_scale[i] = 1;

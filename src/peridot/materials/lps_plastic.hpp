@@ -79,6 +79,9 @@ struct LpsPlastic {
     return p.alpha_volumetric * s.theta[i] * s.theta[i] / (2 * p.dilatation_factor);
   }
 
+  /// k of (C) for every point of the block, into ctx.yield_norm_factor (sized by the caller); needs
+  /// ctx.inverse_weighted_volume. Computed once: the sums run over the reference family, like m.
+  static void calibrate(ModelContext& ctx, const MaterialParams& p, BlockRange range);
   /// The return map of every point of the block for the current u and θ: yield_scale r, Δε̄p and q (P3–P6).
   /// Reads the history, writes only this step's scratch, so it may run any number of times.
   static void prepare(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <variant>
 
 #include <fmt/format.h>
@@ -102,6 +103,7 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   m.kin.deformation_gradient.assign(n, Mat3::Identity());
   m.kin.deformation_gradient_rate = TensorField(n);
   m.hourglass_force.resize(n);
+  m.previous_hourglass_force.resize(n);
 }
 
 CorrespondenceBlocks::~CorrespondenceBlocks() = default;
@@ -135,7 +137,7 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
       });
     }
   }
-  m.previous_hourglass_force = m.hourglass_force;
+  std::swap(m.previous_hourglass_force, m.hourglass_force);  // every block point is rewritten next step
   m.previous_u = u;
   m.have_previous = true;
 }

@@ -25,6 +25,15 @@ int ModelContext::bond_history_arrays() const {
   return arrays;
 }
 
+void calibrate_models(ModelContext& ctx) {
+  const bool plastic = std::any_of(ctx.params.begin(), ctx.params.end(),
+                                   [](const MaterialParams& p) { return p.model == ModelKind::lps_plastic; });
+  ctx.yield_norm_factor.assign(plastic ? ctx.disc->num_points() : 0, 0.0);
+  for (std::size_t b = 0; b < ctx.ranges.size(); ++b)
+    if (ctx.params[b].model == ModelKind::lps_plastic && ctx.ranges[b].begin < ctx.ranges[b].end)
+      LpsPlastic::calibrate(ctx, ctx.params[b], ctx.ranges[b]);
+}
+
 KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& theta, const MaterialHistory* history) {
   KernelFields s;
   s.theta = theta.data();

@@ -26,12 +26,19 @@ struct ModelContext {
   /// its force in that step (checked in the force pass, after the force) instead of failing before any
   /// force uses it. With it, Peridot and LAMMPS break the same bonds (bench/README.md).
   bool bond_failure_after_force = false;
+  /// lps_plastic: k = √(2ψ0)/σ_Y of every point of its blocks, from its reference family
+  /// (materials/lps_plastic.hpp (C)); empty when no block is lps_plastic.
+  std::vector<double> yield_norm_factor;
 
   bool any_dilatation() const;
   bool any_damage() const;
   /// The most per-bond history arrays any block's model needs (0: no inelastic model).
   int bond_history_arrays() const;
 };
+
+/// Per-point constants a model computes once from its reference families (lps_plastic's yield norm factor),
+/// after inverse_weighted_volume is set.
+void calibrate_models(ModelContext& ctx);
 
 /// The fields the kernels read, from θ and (for inelastic models) the history.
 KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& theta, const MaterialHistory* history);

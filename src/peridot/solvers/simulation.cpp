@@ -28,6 +28,10 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
     neighborhood.horizon_of_block.push_back(body.horizon);
   }
   bonds_ = build_neighborhood(disc_, neighborhood);
+  // The partner bond j → i: inelastic models read its history, the correspondence gather its weight.
+  const bool correspondence = std::any_of(model_.params.begin(), model_.params.end(),
+                                          [](const MaterialParams& p) { return p.model == ModelKind::correspondence; });
+  if (model_.bond_history_arrays() > 0 || correspondence) build_reverse_bonds(bonds_);
   correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_);
   walls_ = std::make_unique<RigidWalls>(problem_, model_);
 
@@ -43,16 +47,14 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
   history_arrays_ = model_.bond_history_arrays();
 
   state_.resize(disc_.num_points());
-  if (history_arrays_ > 0) {
-    build_reverse_bonds(bonds_);
-    state_.size_history(bonds_.num_bonds(), history_arrays_);
-  }
+  if (history_arrays_ > 0) state_.size_history(bonds_.num_bonds(), history_arrays_);
   compute_weighted_volume(model_, state_.weighted_volume);
   model_.inverse_weighted_volume.resize(disc_.num_points());
   for (std::size_t i = 0; i < disc_.num_points(); ++i) {
     const double m = state_.weighted_volume[i];
     model_.inverse_weighted_volume[i] = m > 0 ? 1 / m : 0.0;  // a point without bonds has no dilatation
   }
+  calibrate_models(model_);
   loads_ = std::make_unique<Loads>(problem_, disc_, node_sets_);
 
   stable_dt_ = peridot::stable_time_step(model_);
@@ -190,7 +192,7 @@ void Simulation::step() {
 
 void Simulation::update_output_fields() {
   compute_damage(model_, state_.damage);
-  if (any_damage_) label_fragments(bonds_, disc_.input_id, state_.fragment);
+  if (any_damage_) fragments();
   if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation, false, &state_.history);
   if (has_correspondence()) correspondence_->write_point_outputs(state_);
 }
@@ -215,14 +217,19 @@ Totals Simulation::totals() {
     totals.momentum[d] = deterministic_sum(n, [&](std::size_t i) { return density(i) * disc_.volume[i] * v[3 * i + d]; });
   compute_damage(model_, state_.damage);
   for (double phi : state_.damage) totals.max_damage = std::max(totals.max_damage, phi);
-  // Without damage the bonds never change: count the fragments (separate bodies) once.
-  if (any_damage_ || initial_fragments_ == 0) {
-    totals.fragments = label_fragments(bonds_, disc_.input_id, state_.fragment);
-    if (!any_damage_) initial_fragments_ = totals.fragments;
-  } else {
-    totals.fragments = initial_fragments_;
-  }
+  totals.fragments = fragments();
   return totals;
+}
+
+std::size_t Simulation::fragments() {
+  // Bonds change only inside step() (and never without damage): one labelling per step serves both the
+  // Exodus frame and the history row of that step.
+  const std::int64_t step = any_damage_ ? state_.step : 0;
+  if (fragments_step_ != step) {
+    fragment_count_ = label_fragments(bonds_, disc_.input_id, state_.fragment);
+    fragments_step_ = step;
+  }
+  return fragment_count_;
 }
 
 Vec3 Simulation::reaction(const NodeSet& set) const {
@@ -238,8 +245,8 @@ std::size_t Simulation::memory_bytes() const {
       sizeof(double) * (3 /*x*/ + 1 /*V*/ + 3 * 4 /*u v f b*/ + 3 /*φ θ m*/ + 2 /*ε̄p, D*/ +
                         (history_arrays_ > 0 ? 4 /*return-map scratch*/ : 0)) +
       4 + 4;
-  const std::size_t per_bond = sizeof(std::uint32_t) + sizeof(std::uint8_t) +
-                               (history_arrays_ > 0 ? sizeof(std::uint32_t) + history_arrays_ * sizeof(double) : 0);
+  const std::size_t per_bond = sizeof(std::uint32_t) + sizeof(std::uint8_t) + history_arrays_ * sizeof(double) +
+                               (bonds_.reverse.empty() ? 0 : sizeof(std::uint32_t));
   return n * per_point + (n + 1) * sizeof(std::uint64_t) + nnz * per_bond;
 }
 

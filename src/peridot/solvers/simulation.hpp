@@ -81,6 +81,8 @@ class Simulation {
  private:
   /// Internal force at the current u (and, for correspondence blocks, the stress update over dt with the
   /// current, mid-step, velocity).
+  /// Labels state_.fragment (once per step) and returns the number of fragments.
+  std::size_t fragments();
   void compute_forces(double dt);
   void kick(double half_dt);
 
@@ -100,7 +102,8 @@ class Simulation {
   double external_work_ = 0;
   bool any_dilatation_ = false, any_damage_ = false;
   int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
-  std::size_t initial_fragments_ = 0;  ///< fragments of a problem without damage (counted once)
+  std::int64_t fragments_step_ = -1;  ///< the step state_.fragment was labelled at (-1: never)
+  std::size_t fragment_count_ = 0;
 };
 
 /// Sum of term(i) over i < n in chunks of fixed size, chunk results added in order: bitwise the same for
