@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Taylor impact of 6061-T6 rods on a rigid anvil: runs Peridot for a set of shots, measures the final length
 Lf/L0 and the impact-face diameter Df/D0 from the last Exodus frame, checks the energy balance from the
-history, and compares with House et al. (1995) (/work/shared/reference/taylor_6061T6_house1995.csv or --data).
+history, and compares with House et al. (1995) (../shared/reference/taylor_6061T6_house1995.csv beside the repository, or --data).
 
     /usr/bin/python3 examples/taylor_impact/taylor.py --peridot build/peridot --set ld5 --out taylor_runs
     /usr/bin/python3 examples/taylor_impact/taylor.py --peridot build/peridot --set all --out taylor_runs --plot taylor.png
@@ -104,7 +104,9 @@ def main():
     p.add_argument("--set", choices=sorted(SETS), default="ld5")
     p.add_argument("--out", default="taylor_runs")
     p.add_argument("--threads", type=int, default=2)
-    p.add_argument("--data", default="/work/shared/reference/taylor_6061T6_house1995.csv")
+    # The shared reference data sits beside the repository (../shared/reference).
+    p.add_argument("--data", default=os.path.join(HERE, "..", "..", "..", "shared", "reference",
+                                                  "taylor_6061T6_house1995.csv"))
     p.add_argument("--plot", help="write a figure of Lf/L0 and Df/D0 against the experiment")
     p.add_argument("--reuse", action="store_true", help="measure existing runs instead of running again")
     p.add_argument("--check-short", action="store_true",
