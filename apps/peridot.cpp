@@ -6,11 +6,13 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
 #include "peridot/deck/deck.hpp"
 #include "peridot/materials/registry.hpp"
+#include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/runner.hpp"
 #include "peridot/solvers/simulation.hpp"
 
@@ -20,6 +22,8 @@ constexpr int exit_input_error = 2;
 constexpr int exit_numerical_error = 3;
 
 int report(const peridot::InputError& e) {
+  // Every rank finds the same deck errors; one reports them.
+  if (!peridot::Communicator::world().is_root()) return exit_input_error;
   for (const peridot::Diagnostic& d : e.diagnostics()) std::cerr << d.str() << '\n';
   std::cerr << e.diagnostics().size() << (e.diagnostics().size() == 1 ? " error" : " errors")
             << "; nothing was run or written\n";
@@ -29,6 +33,10 @@ int report(const peridot::InputError& e) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Under mpirun (or srun) each process is one rank of a distributed run; started directly, one rank
+  // without MPI (parallel/communicator.hpp).
+  peridot::MpiSession mpi(argc, argv);
+  const bool root = peridot::Communicator::world().is_root();
   CLI::App app{"Peridot: peridynamic solid mechanics and fracture"};
   app.require_subcommand(1);
   std::string deck;
@@ -54,6 +62,8 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (threads > 0) omp_set_num_threads(threads);
+  // Several ranks on one machine share its cores: one thread per rank unless told otherwise.
+  else if (!peridot::Communicator::world().serial() && !std::getenv("OMP_NUM_THREADS")) omp_set_num_threads(1);
 
   try {
     if (info->parsed()) {
@@ -63,24 +73,29 @@ int main(int argc, char** argv) {
     }
     peridot::Problem problem = peridot::load_deck(deck);
     if (!output_dir.empty()) problem.output.directory = std::filesystem::absolute(output_dir).string();
-    for (const peridot::Diagnostic& w : problem.warnings) std::cerr << w.str() << '\n';
+    if (root)
+      for (const peridot::Diagnostic& w : problem.warnings) std::cerr << w.str() << '\n';
     if (check->parsed()) {
       peridot::Simulation simulation(problem);
-      std::cout << deck << ": valid\n" << peridot::describe_setup(simulation);
+      const std::string setup = peridot::describe_setup(simulation);
+      if (root) std::cout << deck << ": valid\n" << setup;
       return 0;
     }
     peridot::RunOptions options;
     options.progress = !quiet;
-    options.log = quiet ? nullptr : &std::cout;
+    options.log = quiet || !root ? nullptr : &std::cout;
     peridot::run_problem(problem, options);
     return 0;
   } catch (const peridot::InputError& e) {
     return report(e);
   } catch (const peridot::NumericalError& e) {
-    std::cerr << "\nerror: " << e.what() << "\noutputs written so far are closed and readable\n";
+    // Distributed, every rank holds the failing rank's message (Simulation::step).
+    if (root) std::cerr << "\nerror: " << e.what() << "\noutputs written so far are closed and readable\n";
     return exit_numerical_error;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << '\n';
+    // A failure that only this rank saw: the others cannot be reached any more; end them all.
+    if (!peridot::Communicator::world().serial()) peridot::MpiSession::abort(1);
     return 1;
   }
 }

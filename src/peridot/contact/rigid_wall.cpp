@@ -21,7 +21,13 @@ RigidWalls::RigidWalls(const Problem& problem, const ModelContext& model) : mode
   }
 }
 
-void RigidWalls::compute(const VectorField& u, double t, VectorField& b) {
+double RigidWalls::pressure(const RigidWall& wall, Vec3 origin, const Discretization& disc, const VectorField& u,
+                            std::size_t i) const {
+  const double gap = dot(disc.x.get(i) + u.get(i) - origin, wall.normal);
+  return gap < 0 ? -gap * wall.stiffness_factor * point_stiffness_[static_cast<std::size_t>(disc.block[i])] : 0.0;
+}
+
+void RigidWalls::compute(const VectorField& u, double t, VectorField& b, std::size_t owned) {
   const Discretization& disc = *model_->disc;
   const std::size_t n = disc.num_points();
   if (b.size() != n) b.resize(n);
@@ -31,20 +37,26 @@ void RigidWalls::compute(const VectorField& u, double t, VectorField& b) {
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     const RigidWall& wall = walls_[w];
     const Vec3 origin = wall.point + (wall.speed * t) * wall.normal;
-    // Penetration times stiffness, κ(−g) ≥ 0 (N/m³), of point i.
-    auto pressure = [&](std::size_t i) {
-      const double gap = dot(disc.x.get(i) + u.get(i) - origin, wall.normal);
-      return gap < 0 ? -gap * wall.stiffness_factor * point_stiffness_[static_cast<std::size_t>(disc.block[i])] : 0.0;
-    };
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      const double q = pressure(i);
+      const double q = pressure(wall, origin, disc, u, i);
       if (q == 0) continue;
       for (int d = 0; d < 3; ++d) bp[3 * i + d] += q * wall.normal[d];
     }
-    const double total = deterministic_sum(n, [&](std::size_t i) { return pressure(i) * disc.volume[i]; });
+    const double total = deterministic_sum(std::min(n, owned), [&](std::size_t i) {
+      return pressure(wall, origin, disc, u, i) * disc.volume[i];
+    });
     force_on_wall_[w] = (-total) * wall.normal;
   }
+}
+
+Vec3 RigidWalls::force_on_wall(std::size_t w, const Discretization& disc, const VectorField& u, double t) const {
+  const RigidWall& wall = walls_[w];
+  const Vec3 origin = wall.point + (wall.speed * t) * wall.normal;
+  const double total = deterministic_sum(disc.num_points(), [&](std::size_t i) {
+    return pressure(wall, origin, disc, u, i) * disc.volume[i];
+  });
+  return (-total) * wall.normal;
 }
 
 }  // namespace peridot

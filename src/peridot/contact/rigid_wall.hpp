@@ -34,12 +34,18 @@ class RigidWalls {
   const std::vector<RigidWall>& walls() const { return walls_; }
 
   /// Penalty force density of every wall on every point at time t into b (N/m³; zero where no contact), and
-  /// the force each wall receives (N), −Σ b V of its own contacts.
-  void compute(const VectorField& u, double t, VectorField& b);
-  /// Force on wall w from the last compute (N).
+  /// the force each wall receives (N), −Σ b V of its own contacts among the first `owned` points.
+  void compute(const VectorField& u, double t, VectorField& b, std::size_t owned = SIZE_MAX);
+  /// Force on wall w from the last compute (N); distributed, this rank's share.
   Vec3 force_on_wall(std::size_t w) const { return force_on_wall_[w]; }
+  /// Force on wall w (N) from every point of `disc` at displacement u and time t, summed as compute() sums
+  /// it: the whole-problem force from a gathered state, the same bits for any number of ranks.
+  Vec3 force_on_wall(std::size_t w, const Discretization& disc, const VectorField& u, double t) const;
 
  private:
+  /// κ(−g) ≥ 0 (N/m³) of point i against the wall through `origin`.
+  double pressure(const RigidWall& wall, Vec3 origin, const Discretization& disc, const VectorField& u, std::size_t i) const;
+
   const ModelContext* model_;
   std::vector<RigidWall> walls_;
   std::vector<double> point_stiffness_;  ///< κ / stiffness_factor per block (N/m⁴)

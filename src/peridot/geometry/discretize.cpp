@@ -163,9 +163,9 @@ Discretization discretize(const Problem& problem) {
   return disc;
 }
 
-std::vector<BlockRange> block_ranges(const Discretization& disc) {
+std::vector<BlockRange> block_ranges(const Discretization& disc, std::size_t count) {
   std::vector<BlockRange> ranges(disc.block_names.size());
-  const std::size_t n = disc.num_points();
+  const std::size_t n = std::min(count, disc.num_points());
   std::size_t i = 0;
   while (i < n) {
     std::size_t j = i;

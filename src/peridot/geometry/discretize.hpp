@@ -17,8 +17,9 @@ struct BlockRange {
 /// Throws InputError (at the body's deck position) for an unreadable point file or a body with no point.
 Discretization discretize(const Problem& problem);
 
-/// [begin, end) of every block; valid because discretize() sorts points by block.
-std::vector<BlockRange> block_ranges(const Discretization& disc);
+/// [begin, end) of every block among the first `count` points (all by default); valid because discretize()
+/// sorts points by block (and a rank's owned points keep that order, parallel/domain.hpp).
+std::vector<BlockRange> block_ranges(const Discretization& disc, std::size_t count = SIZE_MAX);
 
 /// Deterministic uniform deviate in [0, 1) from a 64-bit state (splitmix64), identical on every platform.
 double uniform01(std::uint64_t& state);

@@ -78,59 +78,97 @@ bool bond_crosses(const PrecrackSpec& crack, Vec3 p, Vec3 q, int dimension) {
   return dimension == 3 && crosses_rectangle(p, q, crack);
 }
 
-BondList build_neighborhood(const Discretization& disc, const NeighborhoodOptions& options) {
-  const std::size_t count = disc.num_points();
-  const int dim = disc.dimension;
-  const double max_horizon = *std::max_element(options.horizon_of_block.begin(), options.horizon_of_block.end());
-  const double beyond = options.bond_beyond_horizon ? options.partial_volume_radius : 0.0;
-  const double reach = max_horizon + beyond;
-  const CellGrid grid = bin_points(disc, reach);
+namespace {
 
-  // Visits the neighbours of i in a fixed order; the caller gets them sorted afterwards.
-  auto for_each_neighbor = [&](std::size_t i, auto&& visit) {
-    const Vec3 xi = disc.x.get(i);
-    const double horizon_i = options.horizon_of_block[disc.block[i]];
+/// The neighbour search: a cell list of every point, and the bonds of one point visited in a fixed order.
+class NeighborSearch {
+ public:
+  NeighborSearch(const Discretization& disc, const NeighborhoodOptions& options) : disc_(disc), options_(options) {
+    const double max_horizon = *std::max_element(options.horizon_of_block.begin(), options.horizon_of_block.end());
+    beyond_ = options.bond_beyond_horizon ? options.partial_volume_radius : 0.0;
+    grid_ = bin_points(disc, max_horizon + beyond_);
+  }
+
+  /// Calls visit(j) for every neighbour j of point i (unsorted).
+  template <class Visit>
+  void for_each_neighbor(std::size_t i, Visit&& visit) const {
+    const Vec3 xi = disc_.x.get(i);
+    const double horizon_i = options_.horizon_of_block[disc_.block[i]];
     long c[3];
-    for (int d = 0; d < 3; ++d) c[d] = grid.coord(xi[d], d);
-    for (long k = std::max(0L, c[2] - 1); k <= std::min(grid.n[2] - 1, c[2] + 1); ++k)
-      for (long j = std::max(0L, c[1] - 1); j <= std::min(grid.n[1] - 1, c[1] + 1); ++j)
-        for (long l = std::max(0L, c[0] - 1); l <= std::min(grid.n[0] - 1, c[0] + 1); ++l) {
-          const long cell = grid.index(l, j, k);
-          for (std::uint64_t s = grid.start[cell]; s < grid.start[cell + 1]; ++s) {
-            const std::uint32_t other = grid.points[s];
+    for (int d = 0; d < 3; ++d) c[d] = grid_.coord(xi[d], d);
+    for (long k = std::max(0L, c[2] - 1); k <= std::min(grid_.n[2] - 1, c[2] + 1); ++k)
+      for (long j = std::max(0L, c[1] - 1); j <= std::min(grid_.n[1] - 1, c[1] + 1); ++j)
+        for (long l = std::max(0L, c[0] - 1); l <= std::min(grid_.n[0] - 1, c[0] + 1); ++l) {
+          const long cell = grid_.index(l, j, k);
+          for (std::uint64_t s = grid_.start[cell]; s < grid_.start[cell + 1]; ++s) {
+            const std::uint32_t other = grid_.points[s];
             if (other == i) continue;
-            const Vec3 xj = disc.x.get(other);
-            const double horizon = std::max(horizon_i, options.horizon_of_block[disc.block[other]]);
-            const double cutoff = horizon + beyond;
+            const Vec3 xj = disc_.x.get(other);
+            const double horizon = std::max(horizon_i, options_.horizon_of_block[disc_.block[other]]);
+            const double cutoff = horizon + beyond_;
             const Vec3 bond = xj - xi;
             if (dot(bond, bond) > cutoff * cutoff) continue;
-            if (beyond > 0 && partial_volume_factor(norm(bond), horizon, options.partial_volume_radius) <= 0) continue;
+            if (beyond_ > 0 && partial_volume_factor(norm(bond), horizon, options_.partial_volume_radius) <= 0) continue;
             bool cut = false;
-            for (const PrecrackSpec& crack : options.precracks) cut = cut || bond_crosses(crack, xi, xj, dim);
+            for (const PrecrackSpec& crack : options_.precracks) cut = cut || bond_crosses(crack, xi, xj, disc_.dimension);
             if (!cut) visit(other);
           }
         }
-  };
+  }
 
+  std::uint64_t count(std::size_t i) const {
+    std::uint64_t n = 0;
+    for_each_neighbor(i, [&](std::uint32_t) { ++n; });
+    return n;
+  }
+
+ private:
+  const Discretization& disc_;
+  const NeighborhoodOptions& options_;
+  double beyond_ = 0;
+  CellGrid grid_;
+};
+
+/// CSR of the families of `count` points, the k-th being point_of(k); neighbours sorted.
+template <class PointOf>
+BondList build_families(const NeighborSearch& search, std::size_t count, PointOf&& point_of) {
   BondList bonds;
   bonds.offsets.assign(count + 1, 0);
 #pragma omp parallel for schedule(dynamic, 256)
-  for (std::size_t i = 0; i < count; ++i) {
-    std::uint64_t n = 0;
-    for_each_neighbor(i, [&](std::uint32_t) { ++n; });
-    bonds.offsets[i + 1] = n;
-  }
-  for (std::size_t i = 0; i < count; ++i) bonds.offsets[i + 1] += bonds.offsets[i];
+  for (std::size_t k = 0; k < count; ++k) bonds.offsets[k + 1] = search.count(point_of(k));
+  for (std::size_t k = 0; k < count; ++k) bonds.offsets[k + 1] += bonds.offsets[k];
   bonds.neighbors.resize(bonds.offsets[count]);
 #pragma omp parallel for schedule(dynamic, 256)
-  for (std::size_t i = 0; i < count; ++i) {
-    std::uint32_t* out = bonds.neighbors.data() + bonds.offsets[i];
+  for (std::size_t k = 0; k < count; ++k) {
+    std::uint32_t* out = bonds.neighbors.data() + bonds.offsets[k];
     std::size_t n = 0;
-    for_each_neighbor(i, [&](std::uint32_t j) { out[n++] = j; });
+    search.for_each_neighbor(point_of(k), [&](std::uint32_t j) { out[n++] = j; });
     std::sort(out, out + n);
   }
   bonds.broken.assign(bonds.neighbors.size(), 0);
   return bonds;
+}
+
+}  // namespace
+
+BondList build_neighborhood(const Discretization& disc, const NeighborhoodOptions& options) {
+  const NeighborSearch search(disc, options);
+  return build_families(search, disc.num_points(), [](std::size_t k) { return k; });
+}
+
+BondList build_neighborhood(const Discretization& disc, const NeighborhoodOptions& options,
+                            const std::vector<std::uint32_t>& of) {
+  const NeighborSearch search(disc, options);
+  return build_families(search, of.size(), [&](std::size_t k) { return static_cast<std::size_t>(of[k]); });
+}
+
+std::vector<std::uint64_t> count_bonds(const Discretization& disc, const NeighborhoodOptions& options,
+                                       std::size_t begin, std::size_t end) {
+  const NeighborSearch search(disc, options);
+  std::vector<std::uint64_t> counts(end - begin);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = begin; i < end; ++i) counts[i - begin] = search.count(i);
+  return counts;
 }
 
 void build_reverse_bonds(BondList& bonds) {

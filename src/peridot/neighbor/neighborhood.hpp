@@ -18,6 +18,13 @@ struct NeighborhoodOptions {
 };
 
 BondList build_neighborhood(const Discretization& disc, const NeighborhoodOptions& options);
+/// The families of the points `of` only (any order): CSR over `of`, the k-th family that of point of[k],
+/// neighbours (indices into disc) sorted; each family is exactly the one the full build gives that point.
+BondList build_neighborhood(const Discretization& disc, const NeighborhoodOptions& options,
+                            const std::vector<std::uint32_t>& of);
+/// Bond count of every point of [begin, end), without storing a bond.
+std::vector<std::uint64_t> count_bonds(const Discretization& disc, const NeighborhoodOptions& options,
+                                       std::size_t begin, std::size_t end);
 
 /// Fills bonds.reverse: for bond i → j the index of bond j → i (families are symmetric and sorted, so a
 /// binary search in j's list finds it). 4 bytes per bond; only models with per-bond history need it.

@@ -63,10 +63,11 @@ inline double other_block_force_scalar(const MaterialParams& pj, const KernelFie
   return with_bond_model(pj.model, [&](auto model) { return model.force_scalar(pj, s, j, reverse_bond, e, xi, omega); });
 }
 
-/// Critical stretch of a bond: the smaller of its two blocks' (j outside range = another block).
-inline double pair_critical_stretch(const ModelContext& ctx, const MaterialParams& p, BlockRange range, std::uint32_t j) {
-  if (j >= range.begin && j < range.end) return p.critical_stretch;
-  return std::min(p.critical_stretch, ctx.params[ctx.disc->block[j]].critical_stretch);
+/// Critical stretch of a bond of a point of block `block`: the smaller of its two blocks'.
+inline double pair_critical_stretch(const ModelContext& ctx, const MaterialParams& p, std::int32_t block, std::uint32_t j) {
+  const std::int32_t other = ctx.disc->block[j];
+  if (other == block) return p.critical_stretch;
+  return std::min(p.critical_stretch, ctx.params[other].critical_stretch);
 }
 
 }  // namespace
@@ -99,6 +100,7 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
   BondList& bonds = *ctx.bonds;  // broken flags are written when fail_bonds
+  const auto& blocks = ctx.disc->block;
   theta.resize(ctx.disc->num_points());
   const KernelFields fields = kernel_fields(ctx, theta, history);
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
@@ -112,7 +114,7 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double term = influence(p.influence, g.xi, p.horizon) * g.xi * model.dilatation_extension(fields, b, g.e) *
                             neighbor_volume(ctx, i, j, g.xi);
-        if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, range, j))) {
+        if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, blocks[i], j))) {
           bonds.broken[b] = 1;
           lost += term;
           continue;
@@ -163,15 +165,14 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
     for (std::size_t i = range.begin; i < range.end; ++i) {
       double x_i[3], u_i[3];  // position and displacement of point i
       for (int d = 0; d < 3; ++d) x_i[d] = x[3 * i + d], u_i[d] = up[3 * i + d];
-      // Neighbours are sorted, and blocks are contiguous index ranges, so the bonds to this block form
-      // one run [same_begin, same_end): a branch-free loop that vectorises. Bonds to other blocks
-      // (interfaces only) take the general path below.
-      const std::uint32_t* first = neighbors + bonds.offsets[i];
-      const std::uint32_t* last = neighbors + bonds.offsets[i + 1];
-      const std::uint32_t* same_begin = std::lower_bound(first, last, static_cast<std::uint32_t>(range.begin));
-      const std::uint32_t* same_end = std::lower_bound(same_begin, last, static_cast<std::uint32_t>(range.end));
-      const std::uint64_t b_begin = bonds.offsets[i] + (same_begin - first);
-      const std::uint64_t b_end = bonds.offsets[i] + (same_end - first);
+      // Neighbours are sorted by global index, and every block is a contiguous global index range, so
+      // the bonds to this block form one run [b_begin, b_end) between the bonds to lower and to higher
+      // blocks: a branch-free loop that vectorises. Bonds to other blocks (interfaces only) take the
+      // general path below. (Found by block, not index: a rank's ghosts sit after its owned points.)
+      const std::int32_t block_i = blocks[i];
+      std::uint64_t b_begin = bonds.offsets[i], b_end = bonds.offsets[i + 1];
+      while (b_begin < b_end && blocks[neighbors[b_begin]] < block_i) ++b_begin;
+      while (b_end > b_begin && blocks[neighbors[b_end - 1]] > block_i) --b_end;
       double fx = 0, fy = 0, fz = 0;
 #pragma omp simd reduction(+ : fx, fy, fz)
       for (std::uint64_t b = b_begin; b < b_end; ++b) {
@@ -204,7 +205,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
         if (broken[b]) return;
         const std::uint32_t j = neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
-        if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, range, j))) {
+        if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, blocks[i], j))) {
           broken[b] = 1;
           if (!after_force) return;
         }

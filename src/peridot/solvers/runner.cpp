@@ -55,24 +55,36 @@ std::vector<std::string> optional_exodus_fields(const Simulation& sim) {
 }
 
 std::string describe_setup(const Simulation& sim) {
-  const Discretization& disc = sim.discretization();
+  const Discretization& disc = sim.output_discretization();
   const Problem& problem = sim.problem();
+  const Communicator& comm = sim.communicator();
   std::ostringstream out;
-  const double bonds = static_cast<double>(sim.bonds().num_bonds());
+  const double bonds = static_cast<double>(sim.global_bond_count());
+  const std::vector<BlockRange> ranges = block_ranges(disc);
   out << fmt::format("dimension        {}{}\n", disc.dimension,
                      disc.dimension == 2 ? (problem.plane == PlaneKind::stress ? " (plane stress)" : " (plane strain)") : "");
   out << fmt::format("points           {}\n", disc.num_points());
   for (std::size_t b = 0; b < disc.block_names.size(); ++b) {
-    const BlockRange r = sim.model().ranges[b];
+    const BlockRange r = ranges[b];
     const MaterialParams& p = sim.model().params[b];
     out << fmt::format("  block {:<10} {} points, model {}, horizon {:.6g} m, critical stretch {}\n", disc.block_names[b],
                        r.end - r.begin, model_info(p.model).name, p.horizon,
                        std::isfinite(p.critical_stretch) ? fmt::format("{:.6g}", p.critical_stretch) : "none");
   }
-  out << fmt::format("bonds            {} directed ({:.1f} per point)\n", sim.bonds().num_bonds(),
+  out << fmt::format("bonds            {} directed ({:.1f} per point)\n", static_cast<std::uint64_t>(bonds),
                      disc.num_points() ? bonds / static_cast<double>(disc.num_points()) : 0.0);
-  for (const NodeSet& set : sim.node_sets()) out << fmt::format("  node set {:<10} {} points\n", set.name, set.points.size());
-  out << fmt::format("memory           {:.1f} MiB (points and bonds)\n", static_cast<double>(sim.memory_bytes()) / (1 << 20));
+  for (const NodeSet& set : sim.output_node_sets())
+    out << fmt::format("  node set {:<10} {} points\n", set.name, set.points.size());
+  const double memory = static_cast<double>(sim.memory_bytes());
+  if (comm.serial()) {
+    out << fmt::format("memory           {:.1f} MiB (points and bonds)\n", memory / (1 << 20));
+  } else {
+    const double owned = static_cast<double>(sim.num_owned());
+    const double ghosts = static_cast<double>(sim.halo().ghosts());
+    out << fmt::format("ranks            {} (owned points per rank {:.0f} to {:.0f}, ghosts up to {:.0f})\n", comm.size(),
+                       -comm.max(-owned), comm.max(owned), comm.max(ghosts));
+    out << fmt::format("memory           {:.1f} MiB on the largest rank (points and bonds)\n", comm.max(memory) / (1 << 20));
+  }
   out << fmt::format("stable time step {:.6g} s (Silling–Askari)\n", sim.stable_time_step());
   out << fmt::format("time step        {:.6g} s{}\n", sim.time_step(),
                      sim.time_step() > sim.stable_time_step() ? "  WARNING: above the stable time step" : "");
@@ -96,15 +108,20 @@ void write_file_atomically(const fs::path& path, const std::string& text) {
 }
 
 /// Log lines go to the run log (flushed at once) and to the optional stream.
+/// Distributed, only rank 0 writes (enabled).
 class RunLog {
  public:
-  RunLog(const fs::path& path, std::ostream* echo) : file_(path), echo_(echo) {}
+  RunLog(const fs::path& path, std::ostream* echo, bool enabled) : enabled_(enabled), echo_(echo) {
+    if (enabled_) file_.open(path);
+  }
   void line(const std::string& text) {
+    if (!enabled_) return;
     file_ << text << '\n' << std::flush;
     if (echo_) *echo_ << text << '\n' << std::flush;
   }
 
  private:
+  bool enabled_;
   std::ofstream file_;
   std::ostream* echo_;
 };
@@ -120,27 +137,25 @@ class History {
     for (const RigidWall& wall : sim.walls().walls())
       for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("wall_" + wall.name + axis);
     for (const std::string& name : problem.output.reaction_sets) {
-      for (const NodeSet& set : sim.node_sets())
+      for (const NodeSet& set : sim.output_node_sets())
         if (set.name == name) reaction_sets_.push_back(&set);
       for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("reaction_" + name + axis);
     }
     for (const ProbeSpec& probe : problem.output.probes) {
-      probes_.push_back({nearest_point(sim.discretization(), probe.point), probe.field});
+      probes_.push_back({nearest_point(sim.output_discretization(), probe.point), probe.field});
       columns.push_back(probe.name);
     }
     writer_ = std::make_unique<CsvWriter>(path.string(), columns);
   }
+  /// One row from the gathered outputs (Simulation::gather_outputs with totals; rank 0).
   void write() {
-    const Totals t = sim_.totals();
-    const State& s = sim_.state();
+    const Totals t = sim_.output_totals();
+    const State& s = sim_.output_state();
     std::vector<double> row = {s.time, static_cast<double>(s.step), t.kinetic_energy, t.strain_energy,
-                               sim_.external_work(), t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage,
+                               t.external_work, t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage,
                                t.dissipated_energy, static_cast<double>(t.fragments)};
     if (sim_.has_correspondence()) row.push_back(t.hourglass_work);
-    for (std::size_t w = 0; w < sim_.walls().walls().size(); ++w) {
-      const Vec3 force = sim_.walls().force_on_wall(w);
-      row.insert(row.end(), {force.x, force.y, force.z});
-    }
+    for (const Vec3& force : t.wall_force) row.insert(row.end(), {force.x, force.y, force.z});
     for (const NodeSet* set : reaction_sets_) {
       Vec3 r = sim_.reaction(*set);
       row.insert(row.end(), {r.x, r.y, r.z});
@@ -195,12 +210,32 @@ class Progress {
 
 void run_problem(const Problem& problem, const RunOptions& options) {
   Simulation sim(problem);  // every input error surfaces here, before anything is written
+  const Communicator& comm = sim.communicator();
+  const bool root = comm.is_root();  // distributed, rank 0 writes every output
+
+  // A failure to write on rank 0 stops every rank (the others would wait for it in the next collective).
+  auto on_root = [&](auto&& write) {
+    std::string failure;
+    if (root) {
+      try {
+        write();
+      } catch (const std::exception& e) {
+        if (comm.serial()) throw;
+        failure = e.what();
+      }
+    }
+    if (comm.serial()) return;
+    const int failing = comm.first_rank_with(!failure.empty());
+    if (failing >= 0) throw std::runtime_error(comm.broadcast(failure, failing));
+  };
 
   const OutputSpec& output = problem.output;
   const fs::path dir = output.directory;
-  fs::create_directories(dir);
-  write_file_atomically(dir / "resolved_deck.yaml", resolved_deck_yaml(problem));
-  RunLog log(dir / "run.log", options.log);
+  on_root([&] {
+    fs::create_directories(dir);
+    write_file_atomically(dir / "resolved_deck.yaml", resolved_deck_yaml(problem));
+  });
+  RunLog log(dir / "run.log", options.log, root);
   log.line("peridot run " + problem.deck_path);
   for (const Diagnostic& w : problem.warnings) log.line(w.str());
   std::istringstream setup(describe_setup(sim));
@@ -209,29 +244,35 @@ void run_problem(const Problem& problem, const RunOptions& options) {
     const std::string warning = fmt::format("warning: time step {:.6g} s is above the stable time step {:.6g} s",
                                             sim.time_step(), sim.stable_time_step());
     log.line(warning);
-    if (!options.log) std::cerr << warning << '\n';  // quiet runs still hear about it
+    if (!options.log && root) std::cerr << warning << '\n';  // quiet runs still hear about it
   }
 
   std::unique_ptr<ExodusWriter> exodus;
-  if (output.exodus_every > 0) {
-    std::vector<NodeSetOutput> sets;
-    for (const NodeSet& set : sim.node_sets()) sets.push_back({set.name, set.points});
-    exodus = std::make_unique<ExodusWriter>((dir / output.exodus_file).string(), sim.discretization(), sets,
-                                            "peridot: " + problem.deck_path, problem.thickness, optional_exodus_fields(sim));
-  }
   std::unique_ptr<History> history;
-  if (output.history_every > 0) history = std::make_unique<History>(dir / output.history_file, sim);
+  on_root([&] {
+    if (output.exodus_every > 0) {
+      std::vector<NodeSetOutput> sets;
+      for (const NodeSet& set : sim.output_node_sets()) sets.push_back({set.name, set.points});
+      exodus = std::make_unique<ExodusWriter>((dir / output.exodus_file).string(), sim.output_discretization(), sets,
+                                              "peridot: " + problem.deck_path, problem.thickness,
+                                              optional_exodus_fields(sim));
+    }
+    if (output.history_every > 0) history = std::make_unique<History>(dir / output.history_file, sim);
+  });
 
   auto write_outputs = [&](bool last) {
     const std::int64_t step = sim.state().step;
-    if (exodus && (step % output.exodus_every == 0 || last)) {
-      sim.update_output_fields();
-      exodus->write_frame(sim.state().time, sim.state());
-    }
-    if (history && (step % output.history_every == 0 || last)) history->write();
+    const bool frame = output.exodus_every > 0 && (step % output.exodus_every == 0 || last);
+    const bool row = output.history_every > 0 && (step % output.history_every == 0 || last);
+    if (!frame && !row) return;
+    sim.gather_outputs(frame, row);
+    on_root([&] {
+      if (frame) exodus->write_frame(sim.state().time, sim.output_state());
+      if (row) history->write();
+    });
   };
 
-  Progress progress(options.progress && output.progress);
+  Progress progress(options.progress && output.progress && root);
   try {
     sim.initialize();
     write_outputs(sim.total_steps() == 0);

@@ -7,16 +7,48 @@
 #include <fmt/format.h>
 
 #include "peridot/damage/fragments.hpp"
+#include "peridot/materials/registry.hpp"
+#include "peridot/parallel/domain.hpp"
 
 namespace peridot {
 
-Simulation::Simulation(const Problem& problem) : problem_(problem) {
-  disc_ = discretize(problem_);
-  node_sets_ = build_node_sets(problem_, disc_);
+namespace {
 
-  model_.disc = &disc_;
-  model_.bonds = &bonds_;
-  model_.ranges = block_ranges(disc_);
+/// The models whose partners' per-bond history or correspondence matrices do not cross ranks yet.
+void refuse_undistributed_models(const Problem& problem) {
+  std::vector<Diagnostic> errors;
+  for (const BodySpec& body : problem.bodies) {
+    const MaterialSpec& m = problem.material_of(body);
+    if (m.model == ModelKind::pmb || m.model == ModelKind::lps) continue;
+    errors.push_back({m.pos, fmt::format("materials.{}: model {} does not run on more than one rank yet; run this deck "
+                                         "with one rank (models pmb and lps run distributed)",
+                                         m.name, model_info(m.model).name)});
+  }
+  if (!errors.empty()) throw InputError(errors);
+}
+
+/// The owned local points of every global set (the owned global indices are increasing).
+std::vector<NodeSet> local_node_sets(const std::vector<NodeSet>& global, const std::vector<std::uint32_t>& global_index,
+                                     std::size_t owned) {
+  std::vector<NodeSet> local;
+  const auto first = global_index.begin(), last = global_index.begin() + static_cast<std::ptrdiff_t>(owned);
+  for (const NodeSet& set : global) {
+    NodeSet mine{set.name, {}};
+    for (std::uint32_t g : set.points) {
+      const auto found = std::lower_bound(first, last, g);
+      if (found != last && *found == g) mine.points.push_back(static_cast<std::uint32_t>(found - first));
+    }
+    local.push_back(std::move(mine));
+  }
+  return local;
+}
+
+}  // namespace
+
+Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(problem), comm_(comm) {
+  Discretization global = discretize(problem_);
+  if (!comm_.serial()) refuse_undistributed_models(problem_);
+
   const bool partial = problem_.partial_volume != PartialVolumeKind::none;
   model_.partial_volume_radius = partial ? 0.5 * problem_.spacing : 0.0;
   NeighborhoodOptions neighborhood;
@@ -27,7 +59,42 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
     model_.params.push_back(resolve_material(problem_.material_of(body), body.horizon, problem_));
     neighborhood.horizon_of_block.push_back(body.horizon);
   }
-  bonds_ = build_neighborhood(disc_, neighborhood);
+  std::vector<std::uint8_t> no_fail;  // per global point
+  auto mark_no_fail = [&](const Discretization& all, const std::vector<NodeSet>& sets) {
+    if (problem_.no_fail_sets.empty()) return;
+    no_fail.assign(all.num_points(), 0);
+    for (const std::string& name : problem_.no_fail_sets)
+      for (const NodeSet& set : sets)
+        if (set.name == name)
+          for (std::uint32_t i : set.points) no_fail[i] = 1;
+  };
+  if (comm_.serial()) {
+    disc_ = std::move(global);
+    node_sets_ = build_node_sets(problem_, disc_);
+    owned_ = disc_.num_points();
+    bonds_ = build_neighborhood(disc_, neighborhood);
+    mark_no_fail(disc_, node_sets_);
+    model_.no_fail = std::move(no_fail);
+  } else {
+    global_disc_ = std::move(global);
+    global_node_sets_ = build_node_sets(problem_, global_disc_);
+    LocalDomain domain = decompose(comm_, global_disc_, neighborhood);
+    disc_ = std::move(domain.disc);
+    bonds_ = std::move(domain.bonds);
+    owned_ = domain.owned;
+    global_index_ = std::move(domain.global_index);
+    halo_ = std::move(domain.halo);
+    node_sets_ = local_node_sets(global_node_sets_, global_index_, owned_);
+    mark_no_fail(global_disc_, global_node_sets_);
+    if (!no_fail.empty())  // ghosts too: a bond to a protected ghost never breaks
+      for (std::uint32_t g : global_index_) model_.no_fail.push_back(no_fail[g]);
+    gathered_index_ = comm_.gather(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() +
+                                                              static_cast<std::ptrdiff_t>(owned_)));
+  }
+  model_.disc = &disc_;
+  model_.bonds = &bonds_;
+  model_.ranges = block_ranges(disc_, owned_);
+
   // The partner bond j → i: inelastic models read its history, the correspondence gather its weight.
   const bool correspondence = std::any_of(model_.params.begin(), model_.params.end(),
                                           [](const MaterialParams& p) { return p.model == ModelKind::correspondence; });
@@ -35,13 +102,6 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
   correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_);
   walls_ = std::make_unique<RigidWalls>(problem_, model_);
 
-  if (!problem_.no_fail_sets.empty()) {
-    model_.no_fail.assign(disc_.num_points(), 0);
-    for (const std::string& name : problem_.no_fail_sets)
-      for (const NodeSet& set : node_sets_)
-        if (set.name == name)
-          for (std::uint32_t i : set.points) model_.no_fail[i] = 1;
-  }
   any_dilatation_ = model_.any_dilatation();
   any_damage_ = model_.any_damage();
   history_arrays_ = model_.bond_history_arrays();
@@ -49,6 +109,7 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
   state_.resize(disc_.num_points());
   if (history_arrays_ > 0) state_.size_history(bonds_.num_bonds(), history_arrays_);
   compute_weighted_volume(model_, state_.weighted_volume);
+  halo_.exchange(state_.weighted_volume);
   model_.inverse_weighted_volume.resize(disc_.num_points());
   for (std::size_t i = 0; i < disc_.num_points(); ++i) {
     const double m = state_.weighted_volume[i];
@@ -57,7 +118,8 @@ Simulation::Simulation(const Problem& problem) : problem_(problem) {
   calibrate_models(model_);
   loads_ = std::make_unique<Loads>(problem_, disc_, node_sets_);
 
-  stable_dt_ = peridot::stable_time_step(model_);
+  work_.assign(disc_.num_points(), 0.0);
+  stable_dt_ = comm_.min(peridot::stable_time_step(model_));
   const SolverSpec& solver = problem_.solver;
   dt_ = solver.time_step ? *solver.time_step : solver.safety_factor * stable_dt_;
   if (solver.end_time) {
@@ -73,12 +135,20 @@ void Simulation::initialize() {
   state_.time = 0;
   state_.step = 0;
   loads_->apply_initial_conditions(state_);
+  halo_.exchange(state_.u.data(), 3);
+  halo_.exchange(state_.v.data(), 3);
   loads_->update_body_force(0.0, state_.body_force);
   // No time passes at t = 0: the history starts from the initial displacement with Δt = 0 (an initial
   // displacement beyond yield flows plastically at once; a viscous back extension starts at 0).
   set_time_step(model_.params, 0.0);
-  compute_forces(0.0);
-  if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, 0.0);
+  std::string failure;
+  try {
+    compute_forces(0.0);
+    if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, 0.0);
+  } catch (const NumericalError& e) {
+    failure = e.what();
+  }
+  agree_on_failure(failure);
   set_time_step(model_.params, dt_);
 }
 
@@ -86,12 +156,14 @@ void Simulation::compute_forces(double dt) {
   // Bond failure is checked in the first pass that computes every bond's stretch (on u^{n+1}, before any
   // force uses the bond).
   const bool fail_in_force_pass = !any_dilatation_ || model_.bond_failure_after_force;
-  if (any_dilatation_)
+  if (any_dilatation_) {
     compute_dilatation(model_, state_.u, state_.dilatation, any_damage_ && !fail_in_force_pass, &state_.history);
+    halo_.exchange(state_.dilatation);
+  }
   if (history_arrays_ > 0) prepare_history(model_, state_.u, state_.dilatation, state_.history);
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && fail_in_force_pass,
                          &state_.history);
-  if (!walls_->empty()) walls_->compute(state_.u, state_.time, wall_force_);
+  if (!walls_->empty()) walls_->compute(state_.u, state_.time, wall_force_, owned_);
   if (!has_correspondence()) return;
   try {
     correspondence_->compute_force(state_.u, state_.v, dt, state_.force, state_.history);
@@ -125,28 +197,29 @@ void Simulation::kick(double half_dt) {
 void Simulation::step() {
   const double dt = dt_;
   const double t = state_.time;
-  const std::size_t dofs = 3 * disc_.num_points();
+  const std::size_t dofs = 3 * owned_;
   const auto& prescribed = loads_->prescribed_dofs();
   const auto& kind = loads_->dof_kinds();
-  auto dof_mass = [&](std::uint64_t k) { return model_.params[disc_.block[k / 3]].density * disc_.volume[k / 3]; };
+  const double* volume = disc_.volume.data();
+  double* work = work_.data();
+  auto dof_mass = [&](std::uint64_t k) { return model_.params[disc_.block[k / 3]].density * volume[k / 3]; };
   // Work of the supports on prescribed dofs, R = m a − (f + b)V, and of the body force, by the trapezoidal
-  // rule over the step; m a·Δu is the change of those dofs' kinetic energy.
-  double kinetic_prescribed_before = 0;
-  for (std::uint64_t k : prescribed) kinetic_prescribed_before += 0.5 * dof_mass(k) * state_.v.data()[k] * state_.v.data()[k];
-  auto work_increment = [&]() {
+  // rule over the step, kept per point; m a·Δu is the change of those dofs' kinetic energy.
+  for (std::uint64_t k : prescribed) work[k / 3] -= 0.5 * dof_mass(k) * state_.v.data()[k] * state_.v.data()[k];
+  auto add_work = [&]() {
     const double* v = state_.v.data();  // v^{n+½}: Δu = Δt v^{n+½}
     const double* f = state_.force.data();
     const double* b = state_.body_force.data();
     const double* c = walls_->empty() ? nullptr : wall_force_.data();
-    double w = 0;
-    for (std::uint64_t k : prescribed) w -= 0.5 * f[k] * disc_.volume[k / 3] * dt * v[k];
+    for (std::uint64_t k : prescribed) work[k / 3] -= 0.5 * f[k] * volume[k / 3] * dt * v[k];
     const bool body_force = loads_->has_body_force();
-    if (body_force || c)
-      w += deterministic_sum(dofs, [&](std::size_t k) {
+    if (!body_force && !c) return;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < owned_; ++i)
+      for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
         const double applied = (body_force ? b[k] : 0.0) + (c ? c[k] : 0.0);
-        return kind[k] == DofKind::free ? 0.5 * applied * disc_.volume[k / 3] * dt * v[k] : 0.0;
-      });
-    return w;
+        if (kind[k] == DofKind::free) work[i] += 0.5 * applied * volume[i] * dt * v[k];
+      }
   };
 
   kick(0.5 * dt);
@@ -157,27 +230,31 @@ void Simulation::step() {
   for (std::size_t k = 0; k < dofs; ++k)
     if (kind[k] != DofKind::displacement) u[k] += dt * v[k];
   loads_->apply_displacement_conditions(t + dt, dt, state_.u, state_.v);
-  external_work_ += work_increment();
+  halo_.exchange(state_.u.data(), 3);
+  add_work();
 
   state_.time = t + dt;
   state_.step += 1;
   loads_->update_body_force(state_.time, state_.body_force);
-  compute_forces(dt);
-  if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
-  external_work_ += work_increment();
+  std::string failure;
+  try {
+    compute_forces(dt);
+    if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
+  } catch (const NumericalError& e) {
+    failure = e.what();  // reported below, once every rank has reached the same point
+  }
+  add_work();
 
   kick(0.5 * dt);
   loads_->apply_velocity_conditions(state_.time, state_.v);
-  double kinetic_prescribed_after = 0;
-  for (std::uint64_t k : prescribed) kinetic_prescribed_after += 0.5 * dof_mass(k) * state_.v.data()[k] * state_.v.data()[k];
-  external_work_ += kinetic_prescribed_after - kinetic_prescribed_before;
+  for (std::uint64_t k : prescribed) work[k / 3] += 0.5 * dof_mass(k) * state_.v.data()[k] * state_.v.data()[k];
 
   // A non-finite velocity means the run has failed: name the first such point.
   std::size_t bad = dofs;
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::size_t k = 0; k < dofs; ++k)
     if (!std::isfinite(v[k]) || !std::isfinite(u[k])) bad = std::min(bad, k);
-  if (bad < dofs) {
+  if (bad < dofs && failure.empty()) {
     const std::size_t i = bad / 3;
     const Vec3 x = disc_.x.get(i);
     std::ostringstream msg;
@@ -186,38 +263,101 @@ void Simulation::step() {
         << ", time " << state_.time << " s, point " << disc_.input_id[i] << " (block '" << disc_.block_names[disc_.block[i]]
         << "') at (" << x.x << ", " << x.y << ", " << x.z << ") m; Δt = " << dt << " s, stable Δt = " << stable_dt_
         << " s";
-    throw NumericalError(msg.str());
+    failure = msg.str();
   }
+  agree_on_failure(failure);
 }
 
-void Simulation::update_output_fields() {
+void Simulation::agree_on_failure(const std::string& message) const {
+  const int failing = comm_.first_rank_with(!message.empty());
+  if (failing < 0) return;
+  throw NumericalError(comm_.broadcast(message, failing));
+}
+
+void Simulation::update_output_fields() { gather_outputs(true, false); }
+
+void Simulation::gather_outputs(bool fields, bool totals) {
   compute_damage(model_, state_.damage);
-  if (any_damage_) fragments();
-  if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation, false, &state_.history);
-  if (has_correspondence()) correspondence_->write_point_outputs(state_);
+  fragments();
+  if (fields) {
+    if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation, false, &state_.history);
+    if (has_correspondence()) correspondence_->write_point_outputs(state_);
+  }
+  if (totals) {
+    compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_, &state_.history);
+    if (has_correspondence()) correspondence_->strain_energy_density(energy_density_);
+  }
+  if (comm_.serial()) return;
+  State& g = global_state_;
+  g.time = state_.time;
+  g.step = state_.step;
+  std::vector<double> buffer;
+  auto vector_field = [&](const VectorField& local, VectorField& global) {
+    gather_field(local.data(), 3, buffer);
+    if (comm_.is_root()) {
+      global.resize(global_disc_.num_points());
+      std::copy(buffer.begin(), buffer.end(), global.data());
+    }
+  };
+  vector_field(state_.u, g.u);
+  vector_field(state_.v, g.v);
+  vector_field(state_.force, g.force);
+  gather_field(state_.damage.data(), 1, g.damage);
+  gather_field(state_.dilatation.data(), 1, g.dilatation);
+  gather_field(state_.weighted_volume.data(), 1, g.weighted_volume);
+  gather_field(state_.history.plastic_strain.data(), 1, g.history.plastic_strain);
+  gather_field(state_.history.dissipation.data(), 1, g.history.dissipation);
+  gather_field(state_.fragment.data(), 1, g.fragment);
+  gather_field(work_.data(), 1, global_work_);
+  if (totals) gather_field(energy_density_.data(), 1, global_energy_density_);
+}
+
+void Simulation::gather_field(const double* local, int components, std::vector<double>& global) const {
+  const std::size_t c = static_cast<std::size_t>(components);
+  const std::vector<double> gathered = comm_.gather(std::vector<double>(local, local + c * owned_));
+  if (!comm_.is_root()) return;
+  global.resize(c * global_disc_.num_points());
+  for (std::size_t k = 0; k < gathered_index_.size(); ++k)
+    for (std::size_t d = 0; d < c; ++d) global[c * gathered_index_[k] + d] = gathered[c * k + d];
 }
 
 Totals Simulation::totals() {
+  gather_outputs(false, true);
+  return output_totals();
+}
+
+double Simulation::external_work() {
+  if (comm_.serial()) return deterministic_sum(owned_, [&](std::size_t i) { return work_[i]; });
+  gather_field(work_.data(), 1, global_work_);
+  return comm_.is_root() ? deterministic_sum(global_work_.size(), [&](std::size_t i) { return global_work_[i]; }) : 0.0;
+}
+
+Totals Simulation::output_totals() const {
   Totals totals;
-  const std::size_t n = disc_.num_points();
-  auto density = [&](std::size_t i) { return model_.params[disc_.block[i]].density; };
-  const double* v = state_.v.data();
+  const Discretization& disc = output_discretization();
+  const State& s = output_state();
+  const std::vector<double>& W = comm_.serial() ? energy_density_ : global_energy_density_;
+  const std::vector<double>& work = comm_.serial() ? work_ : global_work_;
+  const std::size_t n = disc.num_points();
+  if (!comm_.is_root()) return totals;
+  auto density = [&](std::size_t i) { return model_.params[disc.block[i]].density; };
+  const double* v = s.v.data();
   totals.kinetic_energy = deterministic_sum(n, [&](std::size_t i) {
-    return 0.5 * density(i) * disc_.volume[i] * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
+    return 0.5 * density(i) * disc.volume[i] * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
   });
-  compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_, &state_.history);
-  if (has_correspondence()) {
-    correspondence_->strain_energy_density(energy_density_);
-    totals.hourglass_work = correspondence_->hourglass_work();
-  }
-  totals.strain_energy = deterministic_sum(n, [&](std::size_t i) { return energy_density_[i] * disc_.volume[i]; });
-  const double* dissipation = state_.history.dissipation.data();
-  totals.dissipated_energy = deterministic_sum(n, [&](std::size_t i) { return dissipation[i] * disc_.volume[i]; });
+  if (has_correspondence()) totals.hourglass_work = correspondence_->hourglass_work();
+  totals.strain_energy = deterministic_sum(n, [&](std::size_t i) { return W[i] * disc.volume[i]; });
+  const double* dissipation = s.history.dissipation.data();
+  totals.dissipated_energy = deterministic_sum(n, [&](std::size_t i) { return dissipation[i] * disc.volume[i]; });
   for (int d = 0; d < 3; ++d)
-    totals.momentum[d] = deterministic_sum(n, [&](std::size_t i) { return density(i) * disc_.volume[i] * v[3 * i + d]; });
-  compute_damage(model_, state_.damage);
-  for (double phi : state_.damage) totals.max_damage = std::max(totals.max_damage, phi);
-  totals.fragments = fragments();
+    totals.momentum[d] = deterministic_sum(n, [&](std::size_t i) { return density(i) * disc.volume[i] * v[3 * i + d]; });
+  for (std::size_t i = 0; i < n; ++i) totals.max_damage = std::max(totals.max_damage, s.damage[i]);
+  // A fragment is named by the smallest input id of its points: count the points that name their own.
+  for (std::size_t i = 0; i < n; ++i)
+    if (s.fragment[i] == static_cast<double>(disc.input_id.empty() ? i : disc.input_id[i])) ++totals.fragments;
+  totals.external_work = deterministic_sum(n, [&](std::size_t i) { return work[i]; });
+  for (std::size_t w = 0; w < walls_->walls().size(); ++w)
+    totals.wall_force.push_back(walls_->force_on_wall(w, disc, s.u, s.time));
   return totals;
 }
 
@@ -226,7 +366,16 @@ std::size_t Simulation::fragments() {
   // Exodus frame and the history row of that step.
   const std::int64_t step = any_damage_ ? state_.step : 0;
   if (fragments_step_ != step) {
-    fragment_count_ = label_fragments(bonds_, disc_.input_id, state_.fragment);
+    if (comm_.serial()) {
+      fragment_count_ = label_fragments(bonds_, disc_.input_id, state_.fragment);
+    } else {
+      label_fragments(bonds_, disc_.input_id, state_.fragment, owned_,
+                      [&](std::vector<double>& label) { halo_.exchange(label); },
+                      [&](bool changed) { return comm_.any(changed); });
+      std::uint64_t own = 0;
+      for (std::size_t i = 0; i < owned_; ++i) own += state_.fragment[i] == static_cast<double>(disc_.input_id[i]);
+      fragment_count_ = comm_.sum(own);
+    }
     fragments_step_ = step;
   }
   return fragment_count_;
@@ -234,15 +383,20 @@ std::size_t Simulation::fragments() {
 
 Vec3 Simulation::reaction(const NodeSet& set) const {
   Vec3 r;
+  const State& s = output_state();
+  const Discretization& disc = output_discretization();
+  if (s.force.size() != disc.num_points()) return r;  // distributed, not rank 0
   for (std::uint32_t i : set.points)
-    for (int d = 0; d < 3; ++d) r[d] -= state_.force(i, d) * disc_.volume[i];
+    for (int d = 0; d < 3; ++d) r[d] -= s.force(i, d) * disc.volume[i];
   return r;
 }
+
+std::uint64_t Simulation::global_bond_count() const { return comm_.sum(bonds_.num_bonds()); }
 
 std::size_t Simulation::memory_bytes() const {
   const std::size_t n = disc_.num_points(), nnz = bonds_.num_bonds();
   const std::size_t per_point =
-      sizeof(double) * (3 /*x*/ + 1 /*V*/ + 3 * 4 /*u v f b*/ + 3 /*φ θ m*/ + 2 /*ε̄p, D*/ +
+      sizeof(double) * (3 /*x*/ + 1 /*V*/ + 3 * 4 /*u v f b*/ + 3 /*φ θ m*/ + 2 /*ε̄p, D*/ + 1 /*external work*/ +
                         (history_arrays_ > 0 ? 4 /*return-map scratch*/ : 0)) +
       4 + 4;
   const std::size_t per_bond = sizeof(std::uint32_t) + sizeof(std::uint8_t) + history_arrays_ * sizeof(double) +

@@ -7,6 +7,12 @@
 // blocks update their stress over the step from u^{n+1} and v^{n+1/2} (correspondence_blocks.hpp). Rigid
 // walls add their penalty force density to the internal and body forces in both kicks, and their work to
 // the external work (trapezoidal, like the body force).
+//
+// Distributed (mpirun): each rank integrates its owned points, its ghosts refreshed from their owners
+// after every pass that changes what a bond loop reads of a partner (u after the drift, θ after the
+// dilatation, m once); parallel/domain.hpp says why every owned value is then bitwise the serial one.
+// Outputs are gathered to rank 0 in the global point order (gather_outputs), where every total is summed
+// exactly as a serial run sums it. External work is kept per point for the same reason.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -18,6 +24,8 @@
 #include "peridot/loads/loads.hpp"
 #include "peridot/loads/node_sets.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
+#include "peridot/parallel/communicator.hpp"
+#include "peridot/parallel/halo.hpp"
 #include "peridot/damage/critical_stretch.hpp"
 #include "peridot/solvers/correspondence_blocks.hpp"
 #include "peridot/solvers/internal_force.hpp"
@@ -25,8 +33,11 @@
 
 namespace peridot {
 
-/// Global quantities of one instant; sums taken in a fixed order, so identical for any thread count.
+/// Global quantities of one instant; sums taken in a fixed order (the global point order), so identical
+/// for any thread and rank count.
 struct Totals {
+  double external_work = 0;   ///< J, work of supports, body forces and walls since t = 0
+  std::vector<Vec3> wall_force;  ///< N, the force on each rigid wall
   double kinetic_energy = 0;  ///< J
   double strain_energy = 0;   ///< J, stored (elastic) energy
   double dissipated_energy = 0;  ///< J, plastic work or viscous dissipation since t = 0
@@ -39,13 +50,20 @@ struct Totals {
 class Simulation {
  public:
   /// Discretizes, builds bonds, node sets, materials and loads. Throws InputError for problems only
-  /// visible once the points exist (an empty node set, an unreadable point file).
-  explicit Simulation(const Problem& problem);
+  /// visible once the points exist (an empty node set, an unreadable point file); distributed, every rank
+  /// throws the same error. Collective over `comm`.
+  explicit Simulation(const Problem& problem, Communicator comm = Communicator::world());
   Simulation(const Simulation&) = delete;  // the model context points into this object
   Simulation& operator=(const Simulation&) = delete;
 
   const Problem& problem() const { return problem_; }
+  /// This rank's points: the owned ones (num_owned()), then the ghosts. One rank: every point.
   const Discretization& discretization() const { return disc_; }
+  std::size_t num_owned() const { return owned_; }
+  const Communicator& communicator() const { return comm_; }
+  const Halo& halo() const { return halo_; }
+  /// Global index of each local point (empty on one rank: the identity).
+  const std::vector<std::uint32_t>& global_index() const { return global_index_; }
   const BondList& bonds() const { return bonds_; }
   const std::vector<NodeSet>& node_sets() const { return node_sets_; }
   const ModelContext& model() const { return model_; }
@@ -56,7 +74,8 @@ class Simulation {
   double stable_time_step() const { return stable_dt_; }  ///< without safety factor (s)
   double time_step() const { return dt_; }                ///< the Δt the run uses (s)
   std::int64_t total_steps() const { return total_steps_; }
-  double external_work() const { return external_work_; }  ///< J, accumulated since t = 0
+  /// J, accumulated since t = 0 (the sum of every point's share; collective, the total on rank 0).
+  double external_work();
 
   /// Applies the initial conditions and computes the forces at t = 0.
   void initialize();
@@ -72,11 +91,24 @@ class Simulation {
   /// Refreshes damage and dilatation of every point, and the correspondence fields (for output; the step
   /// keeps only what it needs).
   void update_output_fields();
+  /// Computes what the outputs read (the fields of an Exodus frame when `fields`, the per-point terms of
+  /// the totals when `totals`) and, distributed, gathers them to rank 0. Collective.
+  void gather_outputs(bool fields, bool totals);
+  /// After gather_outputs, on rank 0 (any rank when serial): the whole problem's points, node sets and
+  /// state in the global point order, and its totals (totals requires gather_outputs(…, true)).
+  const Discretization& output_discretization() const { return comm_.serial() ? disc_ : global_disc_; }
+  const std::vector<NodeSet>& output_node_sets() const { return comm_.serial() ? node_sets_ : global_node_sets_; }
+  const State& output_state() const { return comm_.serial() ? state_ : global_state_; }
+  Totals output_totals() const;
+  /// gather_outputs(false, true), then output_totals() (meaningful on rank 0). Collective.
   Totals totals();
-  /// Reaction force on a node set: −Σ f_i V_i over its points (N).
+  /// Reaction force on a node set of output_node_sets(): −Σ f_i V_i over its points (N), from the output
+  /// state (serial: the current forces).
   Vec3 reaction(const NodeSet& set) const;
-  /// Bytes held by points and bonds (an estimate for `peridot check`).
+  /// Bytes held by this rank's points and bonds (an estimate for `peridot check`).
   std::size_t memory_bytes() const;
+  /// Directed bonds of the whole problem (collective).
+  std::uint64_t global_bond_count() const;
 
  private:
   /// Internal force at the current u (and, for correspondence blocks, the stress update over dt with the
@@ -85,9 +117,26 @@ class Simulation {
   std::size_t fragments();
   void compute_forces(double dt);
   void kick(double half_dt);
+  /// Copies this rank's owned values of a per-point field into the global field on rank 0.
+  void gather_field(const double* local, int components, std::vector<double>& global) const;
+  /// Throws, on every rank, the first failing rank's NumericalError (message empty: none). Collective.
+  void agree_on_failure(const std::string& message) const;
 
   Problem problem_;
+  Communicator comm_;
   Discretization disc_;
+  std::size_t owned_ = 0;
+  std::vector<std::uint32_t> global_index_;
+  Halo halo_;
+  /// Distributed only: the whole problem on every rank (set-up, node sets), and on rank 0 the gathered
+  /// state of the last gather_outputs.
+  Discretization global_disc_;
+  std::vector<NodeSet> global_node_sets_;
+  State global_state_;
+  std::vector<double> global_energy_density_, global_work_;
+  /// Where each rank's owned points go in the global order (rank 0, distributed): all ranks' global
+  /// indices, rank after rank.
+  std::vector<std::uint32_t> gathered_index_;
   BondList bonds_;
   std::vector<NodeSet> node_sets_;
   ModelContext model_;
@@ -99,7 +148,7 @@ class Simulation {
   std::vector<double> energy_density_;
   double stable_dt_ = 0, dt_ = 0;
   std::int64_t total_steps_ = 0;
-  double external_work_ = 0;
+  std::vector<double> work_;  ///< J, external work done on each point since t = 0
   bool any_dilatation_ = false, any_damage_ = false;
   int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
   std::int64_t fragments_step_ = -1;  ///< the step state_.fragment was labelled at (-1: never)

@@ -1,0 +1,102 @@
+#pragma once
+// The ranks of a run. A run started by an MPI launcher (mpirun, srun) is distributed over
+// MPI_COMM_WORLD; a run started directly is one rank and calls no MPI function at all, so the serial
+// program needs neither a launcher nor an MPI daemon. Every collective here is deterministic: min, max,
+// logical or and integer sums do not depend on the order in which ranks contribute. Floating-point sums
+// are never reduced across ranks: they are gathered to rank 0 in the global point order and added there
+// (Simulation), so a printed total is the same bits for any number of ranks.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <mpi.h>
+
+namespace peridot {
+
+class Communicator {
+ public:
+  /// One rank, no MPI.
+  Communicator() = default;
+  /// MPI_COMM_WORLD when MpiSession initialised MPI, else the serial communicator.
+  static Communicator world();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool serial() const { return size_ == 1; }
+  bool is_root() const { return rank_ == 0; }
+  MPI_Comm mpi() const { return comm_; }
+
+  double min(double x) const;
+  double max(double x) const;
+  std::uint64_t sum(std::uint64_t x) const;
+  bool any(bool x) const;
+  /// The lowest rank for which x is true, or −1 when none.
+  int first_rank_with(bool x) const;
+  /// Rank `from`'s text, on every rank.
+  std::string broadcast(const std::string& text, int from) const;
+  void barrier() const;
+
+  /// Concatenation of every rank's values in rank order, on rank 0 (other ranks get an empty vector).
+  template <class T>
+  std::vector<T> gather(const std::vector<T>& local) const;
+  /// Concatenation of every rank's values in rank order, on every rank.
+  template <class T>
+  std::vector<T> all_gather(const std::vector<T>& local) const;
+
+ private:
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  int rank_ = 0, size_ = 1;
+};
+
+/// Initialises MPI for the lifetime of the object when the process was started by an MPI launcher
+/// (Open MPI's OMPI_COMM_WORLD_SIZE, PMI/PMIx, Slurm's PMI variables) or PERIDOT_MPI=1 is set;
+/// otherwise does nothing. A run with one rank under mpirun takes the same serial code path.
+class MpiSession {
+ public:
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  static bool active();
+  /// Ends every rank at once (a rank that cannot reach the others' next collective).
+  [[noreturn]] static void abort(int status);
+};
+
+template <class T>
+MPI_Datatype mpi_type();
+template <> inline MPI_Datatype mpi_type<double>() { return MPI_DOUBLE; }
+template <> inline MPI_Datatype mpi_type<std::uint32_t>() { return MPI_UINT32_T; }
+template <> inline MPI_Datatype mpi_type<std::uint64_t>() { return MPI_UINT64_T; }
+template <> inline MPI_Datatype mpi_type<std::int32_t>() { return MPI_INT32_T; }
+template <> inline MPI_Datatype mpi_type<std::uint8_t>() { return MPI_UINT8_T; }
+template <> inline MPI_Datatype mpi_type<char>() { return MPI_CHAR; }
+
+template <class T>
+std::vector<T> Communicator::gather(const std::vector<T>& local) const {
+  if (serial()) return local;
+  const int count = static_cast<int>(local.size());
+  std::vector<int> counts(is_root() ? size_ : 0), displs;
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+  std::vector<T> out;
+  if (is_root()) {
+    displs.assign(size_, 0);
+    for (int r = 1; r < size_; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    out.resize(static_cast<std::size_t>(displs.back() + counts.back()));
+  }
+  MPI_Gatherv(local.data(), count, mpi_type<T>(), out.data(), counts.data(), displs.data(), mpi_type<T>(), 0, comm_);
+  return out;
+}
+
+template <class T>
+std::vector<T> Communicator::all_gather(const std::vector<T>& local) const {
+  if (serial()) return local;
+  const int count = static_cast<int>(local.size());
+  std::vector<int> counts(size_), displs(size_, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  for (int r = 1; r < size_; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  std::vector<T> out(static_cast<std::size_t>(displs.back() + counts.back()));
+  MPI_Allgatherv(local.data(), count, mpi_type<T>(), out.data(), counts.data(), displs.data(), mpi_type<T>(), comm_);
+  return out;
+}
+
+}  // namespace peridot

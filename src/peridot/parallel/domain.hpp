@@ -1,0 +1,31 @@
+#pragma once
+// One rank's share of a problem (DESIGN.md "Determinism"; docs/parallel.md). Every rank holds the whole
+// discretization (cheap next to the bonds); the bonds, the state and the work are split:
+//  - owned points: those the partition (partition.hpp) gives this rank, in increasing global index, so
+//    that each block stays one contiguous range and the point order is the serial one;
+//  - ghosts: every bond partner of an owned point that another rank owns (halo.hpp), after the owned points;
+//  - bonds: the family of every owned point, exactly the serial family (same neighbours, same order:
+//    increasing global index), its neighbours renumbered locally; ghosts have empty families.
+// A bond loop over the owned points therefore adds the same terms in the same order as a serial run, and
+// every owned point's value is bitwise the serial value, once the ghosts hold their owners' values.
+#include <cstdint>
+#include <vector>
+
+#include "peridot/neighbor/neighborhood.hpp"
+#include "peridot/parallel/halo.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+struct LocalDomain {
+  Discretization disc;  ///< owned points, then ghosts
+  BondList bonds;       ///< CSR over every local point; ghosts' families are empty
+  std::size_t owned = 0;
+  std::vector<std::uint32_t> global_index;  ///< local → global point index
+  Halo halo;
+};
+
+/// Partitions the global discretization and builds this rank's domain. Collective.
+LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options);
+
+}  // namespace peridot

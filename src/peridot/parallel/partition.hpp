@@ -1,0 +1,26 @@
+#pragma once
+// Which rank owns which point: recursive coordinate bisection (Zoltan's RCB) of the reference
+// positions, each point weighted by its bond count so that the ranks get equal bond work. Computed once,
+// from the reference configuration. Every rank holds the whole discretization; rank r hands Zoltan the
+// points of its slice [r·N/P, (r+1)·N/P) with their weights, and every rank gets back the owner of every
+// point. For a given deck and rank count the result is the same on every run (Zoltan's RCB is
+// deterministic), and a run's trajectory never depends on it.
+#include <cstdint>
+#include <vector>
+
+#include "peridot/parallel/communicator.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+/// [begin, end) of rank r's slice of n points.
+inline std::size_t slice_begin(std::size_t n, int rank, int ranks) {
+  return static_cast<std::size_t>((static_cast<unsigned __int128>(n) * static_cast<unsigned>(rank)) / static_cast<unsigned>(ranks));
+}
+
+/// Owner rank of every point. slice_weight: the bond counts of this rank's slice. Collective; on one rank
+/// every point is rank 0's.
+std::vector<int> partition_points(const Communicator& comm, const Discretization& disc,
+                                  const std::vector<std::uint64_t>& slice_weight);
+
+}  // namespace peridot
