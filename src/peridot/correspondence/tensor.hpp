@@ -59,6 +59,7 @@ class TensorField {
   }
   double operator()(std::size_t i, int r, int c) const { return data_[9 * i + 3 * r + c]; }
   const double* data() const { return data_.data(); }
+  double* data() { return data_.data(); }
 
  private:
   std::vector<double> data_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "peridot/core/error.hpp"
 #include "peridot/parallel/partition.hpp"
 
 namespace peridot {
@@ -54,8 +55,84 @@ LocalDomain decompose(const Communicator& comm, const Discretization& global, co
   d.bonds.neighbors.resize(families.neighbors.size());
   for (std::size_t b = 0; b < families.neighbors.size(); ++b) d.bonds.neighbors[b] = local_of[families.neighbors[b]];
   d.bonds.broken.assign(families.neighbors.size(), 0);
+  d.ghost_owner = ghost_owner;
   d.halo = Halo(comm, owned, ghosts, ghost_owner);
   return d;
+}
+
+namespace {
+
+/// The bond of local point i (owned) to the point of global index `partner`, found by binary search: a
+/// family is sorted by global index.
+std::uint64_t find_bond(const LocalDomain& d, std::size_t i, std::uint32_t partner) {
+  const auto& nb = d.bonds.neighbors;
+  std::uint64_t lo = d.bonds.offsets[i], hi = d.bonds.offsets[i + 1];
+  while (lo < hi) {
+    const std::uint64_t mid = (lo + hi) / 2;
+    if (d.global_index[nb[mid]] < partner) lo = mid + 1;
+    else hi = mid;
+  }
+  PERIDOT_REQUIRE(lo < d.bonds.offsets[i + 1] && d.global_index[nb[lo]] == partner, "bond families are not symmetric");
+  return lo;
+}
+
+}  // namespace
+
+Halo build_partner_bonds(const Communicator& comm, LocalDomain& d) {
+  BondList& bonds = d.bonds;
+  const std::size_t nnz = bonds.num_bonds();
+  PERIDOT_REQUIRE(nnz <= UINT32_MAX, "more than 2^32 bonds on a rank: reverse bond indices need 64 bits");
+  bonds.reverse.assign(nnz, 0);
+  // Bonds to ghosts, grouped by the ghost's owner, in bond order within a group: one slot each.
+  std::vector<std::uint64_t> to_ghost;
+  for (std::size_t i = 0; i < d.owned; ++i)
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      const std::uint32_t j = bonds.neighbors[b];
+      if (j < d.owned) bonds.reverse[b] = static_cast<std::uint32_t>(find_bond(d, j, d.global_index[i]));
+      else to_ghost.push_back(b);
+    }
+  auto owner_of = [&](std::uint64_t b) { return d.ghost_owner[bonds.neighbors[b] - d.owned]; };
+  std::stable_sort(to_ghost.begin(), to_ghost.end(), [&](std::uint64_t a, std::uint64_t b) { return owner_of(a) < owner_of(b); });
+  PERIDOT_REQUIRE(nnz + to_ghost.size() <= UINT32_MAX, "more than 2^32 bonds on a rank: reverse bond indices need 64 bits");
+  bonds.partner_slots = to_ghost.size();
+
+  const int size = comm.size();
+  std::vector<int> request_count(size, 0), request_displ(size, 0);
+  std::vector<std::uint32_t> requests;  // (global j, global i) of every slot, in slot order
+  for (std::size_t k = 0; k < to_ghost.size(); ++k) {
+    const std::uint64_t b = to_ghost[k];
+    bonds.reverse[b] = static_cast<std::uint32_t>(nnz + k);
+    request_count[owner_of(b)] += 2;
+    const std::size_t i = static_cast<std::size_t>(std::upper_bound(bonds.offsets.begin(), bonds.offsets.begin() +
+                                                                    static_cast<std::ptrdiff_t>(d.owned) + 1, b) -
+                                                   bonds.offsets.begin()) - 1;
+    requests.push_back(d.global_index[bonds.neighbors[b]]);
+    requests.push_back(d.global_index[i]);
+  }
+  for (int r = 1; r < size; ++r) request_displ[r] = request_displ[r - 1] + request_count[r - 1];
+  std::vector<int> asked_count(size, 0), asked_displ(size, 0);
+  MPI_Alltoall(request_count.data(), 1, MPI_INT, asked_count.data(), 1, MPI_INT, comm.mpi());
+  for (int r = 1; r < size; ++r) asked_displ[r] = asked_displ[r - 1] + asked_count[r - 1];
+  std::vector<std::uint32_t> asked(static_cast<std::size_t>(asked_displ.back() + asked_count.back()));
+  MPI_Alltoallv(requests.data(), request_count.data(), request_displ.data(), MPI_UINT32_T, asked.data(),
+                asked_count.data(), asked_displ.data(), MPI_UINT32_T, comm.mpi());
+
+  const auto owned_begin = d.global_index.begin(), owned_end = owned_begin + static_cast<std::ptrdiff_t>(d.owned);
+  std::vector<Halo::Peer> peers;
+  for (int r = 0; r < size; ++r) {
+    if (request_count[r] == 0 && asked_count[r] == 0) continue;
+    Halo::Peer peer;
+    peer.rank = r;
+    peer.receive_begin = static_cast<std::size_t>(request_displ[r] / 2);
+    peer.receive_count = static_cast<std::size_t>(request_count[r] / 2);
+    for (int k = asked_displ[r]; k < asked_displ[r] + asked_count[r]; k += 2) {
+      const auto j = std::lower_bound(owned_begin, owned_end, asked[k]);
+      PERIDOT_REQUIRE(j != owned_end && *j == asked[k], "a partner bond was asked of a rank that does not own it");
+      peer.send.push_back(static_cast<std::uint32_t>(find_bond(d, static_cast<std::size_t>(j - owned_begin), asked[k + 1])));
+    }
+    peers.push_back(std::move(peer));
+  }
+  return Halo(comm, nnz, to_ghost.size(), std::move(peers));
 }
 
 }  // namespace peridot

@@ -22,10 +22,17 @@ struct LocalDomain {
   BondList bonds;       ///< CSR over every local point; ghosts' families are empty
   std::size_t owned = 0;
   std::vector<std::uint32_t> global_index;  ///< local → global point index
+  std::vector<int> ghost_owner;             ///< owner rank of ghost owned + g
   Halo halo;
 };
 
 /// Partitions the global discretization and builds this rank's domain. Collective.
 LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options);
+
+/// For the models that read their partner's bond (history, correspondence weights): fills
+/// domain.bonds.reverse — the local bond j → i where j is owned, else a partner-bond slot (fields.hpp) —
+/// and returns the exchange that copies the owners' values of bond j → i into the slots of a per-bond
+/// array sized num_bonds() + partner_slots. Slots are grouped by owner rank. Collective.
+Halo build_partner_bonds(const Communicator& comm, LocalDomain& domain);
 
 }  // namespace peridot

@@ -8,6 +8,7 @@
 // ranks it sends to.
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "peridot/parallel/communicator.hpp"
@@ -23,6 +24,16 @@ class Halo {
   Halo(const Communicator& comm, const std::vector<std::uint32_t>& owned_global,
        const std::vector<std::uint32_t>& ghost_global, const std::vector<int>& ghost_owner);
 
+  /// The same exchange for entries other than points (per-bond arrays, parallel/domain.hpp): what each peer
+  /// receives is `receive_count` entries written at base + receive_begin, what it sends the entries `send`.
+  struct Peer {
+    int rank = 0;
+    std::vector<std::uint32_t> send;  ///< local entries whose values this peer holds as ghosts
+    std::size_t receive_begin = 0, receive_count = 0;  ///< this peer's ghosts: base + [begin, begin + count)
+  };
+  Halo(const Communicator& comm, std::size_t base, std::size_t ghosts, std::vector<Peer> peers)
+      : comm_(comm), owned_(base), ghosts_(ghosts), peers_(std::move(peers)) {}
+
   /// Refreshes the ghost entries of a field with `components` values per point (point i at
   /// field[components·i + c]). Collective over the ranks that share ghosts; a no-op without ghosts.
   template <class T>
@@ -37,15 +48,10 @@ class Halo {
   std::size_t sent_points() const;
 
  private:
-  struct Peer {
-    int rank = 0;
-    std::vector<std::uint32_t> send;  ///< owned local indices whose values this peer holds as ghosts
-    std::size_t receive_begin = 0, receive_count = 0;  ///< this peer's ghosts: local owned + [begin, begin + count)
-  };
   void exchange_bytes(unsigned char* field, std::size_t bytes_per_point) const;
 
   Communicator comm_;
-  std::size_t owned_ = 0, ghosts_ = 0;
+  std::size_t owned_ = 0, ghosts_ = 0;  ///< owned_: where the ghost entries begin
   std::vector<Peer> peers_;
   mutable std::vector<unsigned char> send_buffer_;
 };

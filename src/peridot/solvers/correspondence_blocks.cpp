@@ -2,6 +2,7 @@
 // kinematics → stress → force sequence, and the energy and field outputs (correspondence_blocks.hpp).
 #include "peridot/solvers/correspondence_blocks.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 #include "peridot/correspondence/j2_viscoplastic.hpp"
 #include "peridot/correspondence/kinematics.hpp"
 #include "peridot/materials/registry.hpp"
+#include "peridot/neighbor/neighborhood.hpp"
 #include "peridot/solvers/simulation.hpp"
 
 namespace peridot {
@@ -61,6 +63,27 @@ void check_interfaces(const Problem& problem, const ModelContext& model) {
   }
 }
 
+/// The weight ω_j⟨ξ_ji⟩ (with its partial-volume factor) of every partner bond j → i whose j is a ghost, in
+/// its slot past the rank's own bonds: the same arithmetic as make_correspondence_context on j's rank.
+void add_partner_slot_weights(CorrespondenceContext& ctx, const BondList& bonds, const std::vector<BlockGeometry>& blocks,
+                              double partial_volume_radius) {
+  if (bonds.partner_slots == 0) return;
+  const std::size_t nnz = bonds.num_bonds();
+  const Discretization& disc = *ctx.disc;
+  ctx.bond_weight.resize(nnz + bonds.partner_slots);
+  for (std::size_t i = 0; i + 1 < bonds.offsets.size(); ++i)
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      if (bonds.reverse[b] < nnz) continue;
+      const std::uint32_t j = bonds.neighbors[b];
+      const BlockGeometry& gi = blocks[disc.block[i]];
+      const BlockGeometry& gj = blocks[disc.block[j]];
+      const double xi = norm(disc.x.get(i) - disc.x.get(j));
+      const double pair_horizon = std::max(gj.horizon, gi.horizon);
+      ctx.bond_weight[bonds.reverse[b]] =
+          influence(gj.influence, xi, gj.horizon) * partial_volume_factor(xi, pair_horizon, partial_volume_radius);
+    }
+}
+
 // Symmetric tensors in the order of correspondence_output_names(): xx yy zz xy yz zx.
 const int symmetric_index[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
 
@@ -73,20 +96,24 @@ struct CorrespondenceBlocks::Impl {
   StressFields stress;
   std::vector<AnyBlock> blocks;
   std::vector<std::size_t> block_index;  ///< the ModelContext block of each entry of `blocks`
+  const Halo* halo = nullptr;
   VectorField hourglass_force, previous_hourglass_force, previous_u;
   bool have_previous = false;
-  double hourglass_work = 0;
+  std::vector<double> hourglass_work;  ///< per point (J)
+  std::size_t owned = 0;               ///< points whose work counts: the owned ones
 };
 
-CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelContext& model)
+CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.model = &model;
+  m.halo = halo;
   std::vector<BlockGeometry> geometry;
   for (std::size_t b = 0; b < model.params.size(); ++b) {
     const MaterialParams& p = model.params[b];
     geometry.push_back({p.horizon, p.influence});
-    if (p.model != ModelKind::correspondence || model.ranges[b].begin == model.ranges[b].end) continue;
+    // A block with no point on this rank still takes part: its ghosts' exchange is collective.
+    if (p.model != ModelKind::correspondence) continue;
     m.blocks.push_back(make_block(p, model.ranges[b]));
     m.block_index.push_back(b);
   }
@@ -94,6 +121,10 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   check_interfaces(problem, model);
   const std::size_t n = model.disc->num_points();
   m.ctx = make_correspondence_context(*model.disc, *model.bonds, geometry, model.partial_volume_radius);
+  add_partner_slot_weights(m.ctx, *model.bonds, geometry, model.partial_volume_radius);
+  m.owned = model.ranges.empty() ? 0 : std::max_element(model.ranges.begin(), model.ranges.end(), [](auto a, auto b) {
+    return a.end < b.end;
+  })->end;
   for (std::size_t b : m.block_index) {
     const MaterialParams& p = model.params[b];
     m.ctx.hourglass_stiffness[b] = hourglass_stiffness(p.hourglass_coefficient, p.elastic.bulk_modulus, p.horizon);
@@ -104,6 +135,7 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   m.kin.deformation_gradient_rate = TensorField(n);
   m.hourglass_force.resize(n);
   m.previous_hourglass_force.resize(n);
+  m.hourglass_work.assign(n, 0.0);
 }
 
 CorrespondenceBlocks::~CorrespondenceBlocks() = default;
@@ -118,6 +150,10 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
   for (AnyBlock& any : m.blocks)
     std::visit([&](auto& block) { update_block_stress(m.ctx, m.kin, dt, block, m.stress, history.dissipation.data()); },
                any);
+  if (m.halo) {  // what the gather reads of a ghost partner
+    m.halo->exchange(m.stress.force_tensor.data(), 9);
+    m.halo->exchange(m.kin.deformation_gradient.data(), 9);
+  }
   for (AnyBlock& any : m.blocks)
     std::visit([&](auto& block) {
       compute_correspondence_force(m.ctx, m.kin, m.stress, u, f, block.range, &m.hourglass_force);
@@ -128,13 +164,13 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
   if (m.have_previous) {
     for (AnyBlock& any : m.blocks) {
       const BlockRange range = std::visit([](auto& block) { return block.range; }, any);
-      m.hourglass_work -= deterministic_sum(range.end - range.begin, [&](std::size_t k) {
-        const std::size_t i = range.begin + k;
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = range.begin; i < range.end; ++i) {
         double w = 0;
         for (int d = 0; d < 3; ++d)
           w += 0.5 * (m.previous_hourglass_force(i, d) + m.hourglass_force(i, d)) * (u(i, d) - m.previous_u(i, d));
-        return w * volume[i];
-      });
+        m.hourglass_work[i] -= w * volume[i];
+      }
     }
   }
   std::swap(m.previous_hourglass_force, m.hourglass_force);  // every block point is rewritten next step
@@ -154,7 +190,12 @@ void CorrespondenceBlocks::strain_energy_density(std::vector<double>& W) const {
   }
 }
 
-double CorrespondenceBlocks::hourglass_work() const { return impl_->hourglass_work; }
+double CorrespondenceBlocks::hourglass_work() const {
+  const std::vector<double>& w = impl_->hourglass_work;
+  return deterministic_sum(std::min(w.size(), impl_->owned), [&](std::size_t i) { return w[i]; });
+}
+
+const std::vector<double>& CorrespondenceBlocks::point_hourglass_work() const { return impl_->hourglass_work; }
 
 const std::vector<std::string>& CorrespondenceBlocks::output_field_names() { return correspondence_output_names(); }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "peridot/deck/problem.hpp"
+#include "peridot/parallel/halo.hpp"
 #include "peridot/solvers/internal_force.hpp"
 #include "peridot/state/fields.hpp"
 
@@ -22,8 +23,10 @@ namespace peridot {
 class CorrespondenceBlocks {
  public:
   /// The correspondence blocks of `model` (none: empty()). Throws InputError, at the body's position in
-  /// the deck, for a bond between a correspondence block and another model's block.
-  CorrespondenceBlocks(const Problem& problem, const ModelContext& model);
+  /// the deck, for a bond between a correspondence block and another model's block. Distributed, `halo`
+  /// refreshes the ghosts' P K⁻¹ and F between the stress update and the force gather, and the weights
+  /// of the partner bonds j → i of ghost partners are computed here (BondList::partner_slots).
+  CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo = nullptr);
   ~CorrespondenceBlocks();
   CorrespondenceBlocks(const CorrespondenceBlocks&) = delete;
   CorrespondenceBlocks& operator=(const CorrespondenceBlocks&) = delete;
@@ -39,8 +42,10 @@ class CorrespondenceBlocks {
   /// Stored elastic energy density (J/m³, per reference volume) into W at every correspondence point.
   void strain_energy_density(std::vector<double>& W) const;
   /// Work done on the points by the hourglass forces since t = 0, with the sign of a stored energy (J):
-  /// W_hg = −Σ_steps Σ_i ½(f_hg^n + f_hg^{n+1})·(u^{n+1} − u^n) V_i.
+  /// W_hg = −Σ_steps Σ_i ½(f_hg^n + f_hg^{n+1})·(u^{n+1} − u^n) V_i, kept per point (point_hourglass_work,
+  /// J) and summed over the points in their order.
   double hourglass_work() const;
+  const std::vector<double>& point_hourglass_work() const;
   /// Fills state.point_outputs (names: output_field_names()) and history.plastic_strain (ε̄p of J2).
   void write_point_outputs(State& state) const;
 

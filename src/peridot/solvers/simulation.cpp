@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -13,19 +14,6 @@
 namespace peridot {
 
 namespace {
-
-/// The models whose partners' per-bond history or correspondence matrices do not cross ranks yet.
-void refuse_undistributed_models(const Problem& problem) {
-  std::vector<Diagnostic> errors;
-  for (const BodySpec& body : problem.bodies) {
-    const MaterialSpec& m = problem.material_of(body);
-    if (m.model == ModelKind::pmb || m.model == ModelKind::lps) continue;
-    errors.push_back({m.pos, fmt::format("materials.{}: model {} does not run on more than one rank yet; run this deck "
-                                         "with one rank (models pmb and lps run distributed)",
-                                         m.name, model_info(m.model).name)});
-  }
-  if (!errors.empty()) throw InputError(errors);
-}
 
 /// The owned local points of every global set (the owned global indices are increasing).
 std::vector<NodeSet> local_node_sets(const std::vector<NodeSet>& global, const std::vector<std::uint32_t>& global_index,
@@ -47,7 +35,6 @@ std::vector<NodeSet> local_node_sets(const std::vector<NodeSet>& global, const s
 
 Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(problem), comm_(comm) {
   Discretization global = discretize(problem_);
-  if (!comm_.serial()) refuse_undistributed_models(problem_);
 
   const bool partial = problem_.partial_volume != PartialVolumeKind::none;
   model_.partial_volume_radius = partial ? 0.5 * problem_.spacing : 0.0;
@@ -68,17 +55,24 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
         if (set.name == name)
           for (std::uint32_t i : set.points) no_fail[i] = 1;
   };
+  // The partner bond j → i: inelastic models read its history, the correspondence gather its weight.
+  const bool needs_partner_bonds =
+      model_.bond_history_arrays() > 0 ||
+      std::any_of(model_.params.begin(), model_.params.end(),
+                  [](const MaterialParams& p) { return p.model == ModelKind::correspondence; });
   if (comm_.serial()) {
     disc_ = std::move(global);
     node_sets_ = build_node_sets(problem_, disc_);
     owned_ = disc_.num_points();
     bonds_ = build_neighborhood(disc_, neighborhood);
+    if (needs_partner_bonds) build_reverse_bonds(bonds_);
     mark_no_fail(disc_, node_sets_);
     model_.no_fail = std::move(no_fail);
   } else {
     global_disc_ = std::move(global);
     global_node_sets_ = build_node_sets(problem_, global_disc_);
     LocalDomain domain = decompose(comm_, global_disc_, neighborhood);
+    if (needs_partner_bonds) bond_halo_ = build_partner_bonds(comm_, domain);
     disc_ = std::move(domain.disc);
     bonds_ = std::move(domain.bonds);
     owned_ = domain.owned;
@@ -95,11 +89,13 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   model_.bonds = &bonds_;
   model_.ranges = block_ranges(disc_, owned_);
 
-  // The partner bond j → i: inelastic models read its history, the correspondence gather its weight.
-  const bool correspondence = std::any_of(model_.params.begin(), model_.params.end(),
-                                          [](const MaterialParams& p) { return p.model == ModelKind::correspondence; });
-  if (model_.bond_history_arrays() > 0 || correspondence) build_reverse_bonds(bonds_);
-  correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_);
+  std::optional<InputError> refused;
+  try {
+    correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_, &halo_);
+  } catch (const InputError& e) {
+    refused = e;  // found from this rank's bonds only: every rank must hear of it
+  }
+  agree_on_input_error(refused);
   walls_ = std::make_unique<RigidWalls>(problem_, model_);
 
   any_dilatation_ = model_.any_dilatation();
@@ -107,7 +103,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   history_arrays_ = model_.bond_history_arrays();
 
   state_.resize(disc_.num_points());
-  if (history_arrays_ > 0) state_.size_history(bonds_.num_bonds(), history_arrays_);
+  if (history_arrays_ > 0) state_.size_history(bonds_.num_bonds() + bonds_.partner_slots, history_arrays_);
   compute_weighted_volume(model_, state_.weighted_volume);
   halo_.exchange(state_.weighted_volume);
   model_.inverse_weighted_volume.resize(disc_.num_points());
@@ -145,6 +141,7 @@ void Simulation::initialize() {
   try {
     compute_forces(0.0);
     if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, 0.0);
+    exchange_partner_bonds();
   } catch (const NumericalError& e) {
     failure = e.what();
   }
@@ -160,7 +157,13 @@ void Simulation::compute_forces(double dt) {
     compute_dilatation(model_, state_.u, state_.dilatation, any_damage_ && !fail_in_force_pass, &state_.history);
     halo_.exchange(state_.dilatation);
   }
-  if (history_arrays_ > 0) prepare_history(model_, state_.u, state_.dilatation, state_.history);
+  if (history_arrays_ > 0) {
+    prepare_history(model_, state_.u, state_.dilatation, state_.history);
+    // What the force of an inelastic point's partner reads of it (lps_plastic.hpp).
+    halo_.exchange(state_.history.released_extension);
+    halo_.exchange(state_.history.yield_scale);
+    halo_.exchange(state_.history.deviatoric_moment);
+  }
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && fail_in_force_pass,
                          &state_.history);
   if (!walls_->empty()) walls_->compute(state_.u, state_.time, wall_force_, owned_);
@@ -231,6 +234,7 @@ void Simulation::step() {
     if (kind[k] != DofKind::displacement) u[k] += dt * v[k];
   loads_->apply_displacement_conditions(t + dt, dt, state_.u, state_.v);
   halo_.exchange(state_.u.data(), 3);
+  if (has_correspondence()) halo_.exchange(state_.v.data(), 3);  // Ḟ reads the partners' v^{n+½}
   add_work();
 
   state_.time = t + dt;
@@ -240,6 +244,7 @@ void Simulation::step() {
   try {
     compute_forces(dt);
     if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
+    exchange_partner_bonds();
   } catch (const NumericalError& e) {
     failure = e.what();  // reported below, once every rank has reached the same point
   }
@@ -266,6 +271,34 @@ void Simulation::step() {
     failure = msg.str();
   }
   agree_on_failure(failure);
+}
+
+void Simulation::exchange_partner_bonds() {
+  for (std::vector<double>& array : state_.history.bond)
+    if (!array.empty()) bond_halo_.exchange(array);
+}
+
+void Simulation::agree_on_input_error(const std::optional<InputError>& error) const {
+  // Diagnostics travel as text: file, line, column and message per diagnostic, unit and record separators.
+  std::string text;
+  if (error)
+    for (const Diagnostic& d : error->diagnostics())
+      text += fmt::format("{}\x1f{}\x1f{}\x1f{}\x1e", d.pos.file, d.pos.line, d.pos.column, d.message);
+  const int failing = comm_.first_rank_with(error.has_value());
+  if (failing < 0) return;
+  if (comm_.serial()) throw *error;
+  std::vector<Diagnostic> diagnostics;
+  std::istringstream records(comm_.broadcast(text, failing));
+  for (std::string record; std::getline(records, record, '\x1e');) {
+    std::istringstream fields(record);
+    std::string file, line, column, message;
+    std::getline(fields, file, '\x1f');
+    std::getline(fields, line, '\x1f');
+    std::getline(fields, column, '\x1f');
+    std::getline(fields, message);
+    diagnostics.push_back({{file, std::stoi(line), std::stoi(column)}, message});
+  }
+  throw InputError(diagnostics);
 }
 
 void Simulation::agree_on_failure(const std::string& message) const {
@@ -310,6 +343,11 @@ void Simulation::gather_outputs(bool fields, bool totals) {
   gather_field(state_.fragment.data(), 1, g.fragment);
   gather_field(work_.data(), 1, global_work_);
   if (totals) gather_field(energy_density_.data(), 1, global_energy_density_);
+  if (has_correspondence()) {
+    gather_field(correspondence_->point_hourglass_work().data(), 1, global_hourglass_work_);
+    if (fields)
+      for (auto& [name, values] : state_.point_outputs) gather_field(values.data(), 1, g.point_outputs[name]);
+  }
 }
 
 void Simulation::gather_field(const double* local, int components, std::vector<double>& global) const {
@@ -345,7 +383,9 @@ Totals Simulation::output_totals() const {
   totals.kinetic_energy = deterministic_sum(n, [&](std::size_t i) {
     return 0.5 * density(i) * disc.volume[i] * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
   });
-  if (has_correspondence()) totals.hourglass_work = correspondence_->hourglass_work();
+  if (has_correspondence())
+    totals.hourglass_work = comm_.serial() ? correspondence_->hourglass_work()
+                                          : deterministic_sum(n, [&](std::size_t i) { return global_hourglass_work_[i]; });
   totals.strain_energy = deterministic_sum(n, [&](std::size_t i) { return W[i] * disc.volume[i]; });
   const double* dissipation = s.history.dissipation.data();
   totals.dissipated_energy = deterministic_sum(n, [&](std::size_t i) { return dissipation[i] * disc.volume[i]; });

@@ -15,6 +15,7 @@
 // exactly as a serial run sums it. External work is kept per point for the same reason.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -121,6 +122,10 @@ class Simulation {
   void gather_field(const double* local, int components, std::vector<double>& global) const;
   /// Throws, on every rank, the first failing rank's NumericalError (message empty: none). Collective.
   void agree_on_failure(const std::string& message) const;
+  /// Throws, on every rank, the first failing rank's InputError (none: no error anywhere). Collective.
+  void agree_on_input_error(const std::optional<InputError>& error) const;
+  /// Copies the owners' per-bond history into the partner-bond slots (after every commit).
+  void exchange_partner_bonds();
 
   Problem problem_;
   Communicator comm_;
@@ -128,12 +133,13 @@ class Simulation {
   std::size_t owned_ = 0;
   std::vector<std::uint32_t> global_index_;
   Halo halo_;
+  Halo bond_halo_;  ///< partner-bond slots (BondList::reverse), for models that read their partner's bond
   /// Distributed only: the whole problem on every rank (set-up, node sets), and on rank 0 the gathered
   /// state of the last gather_outputs.
   Discretization global_disc_;
   std::vector<NodeSet> global_node_sets_;
   State global_state_;
-  std::vector<double> global_energy_density_, global_work_;
+  std::vector<double> global_energy_density_, global_work_, global_hourglass_work_;
   /// Where each rank's owned points go in the global order (rank 0, distributed): all ranks' global
   /// indices, rank after rank.
   std::vector<std::uint32_t> gathered_index_;

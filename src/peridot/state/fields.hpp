@@ -52,7 +52,11 @@ struct BondList {
   std::vector<std::uint32_t> neighbors;   ///< size nnz
   std::vector<std::uint8_t> broken;       ///< 1 once the bond has failed (irreversible)
   /// For bond i → j, the index of bond j → i; built only when a model reads its partner's bond history.
+  /// Distributed, when j is a ghost the index is num_bonds() + k: the k-th partner-bond slot, past the end
+  /// of this rank's bonds, where the per-bond arrays a model reads of its partner hold copies of the
+  /// owner's values (parallel/domain.hpp).
   std::vector<std::uint32_t> reverse;
+  std::size_t partner_slots = 0;  ///< distributed: partner-bond slots past num_bonds()
   std::size_t num_bonds() const { return neighbors.size(); }
 };
 

@@ -1,0 +1,111 @@
+#!/usr/bin/python3
+"""Distributed runs (issue: MPI domain decomposition). Every model, damage, loads, walls and outputs give the
+same bits on 1, 2, 3 and 4 ranks as a serial run: each deck runs once without mpirun and then under
+`mpirun --oversubscribe -np N` (more ranks than this machine's cores), and every byte of the Exodus file,
+the history and the resolved deck (but for its output directory) must match. Also: a deck error is reported once (not once per rank)
+with exit status 2 and nothing written, also when only some ranks can see it (a correspondence body bonded
+to another model's body, found from the local bonds); a numerical failure exits 3 on every rank with one
+message and the frames written so far readable; `peridot check` describes the decomposition."""
+import argparse
+import filecmp
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+DECKS = [  # (deck, what it covers)
+    ("examples/quickstart/deck.yaml", "pmb 2D fracture: pre-crack, no-fail grips, velocity conditions, reaction, probe"),
+    ("tests/regression/decks/exodus_small.yaml", "lps 2D plane strain with damage, body force, jitter"),
+    ("tests/regression/decks/mpi_mixed.yaml", "pmb|lps interface in 3D, damage, displacement condition, rigid wall"),
+    ("tests/regression/decks/inelastic_small.yaml", "lps_plastic beside lps_viscoelastic, damage across the interface"),
+    ("tests/regression/decks/mpi_correspondence_wall.yaml", "correspondence J2 with hourglass control on an anvil"),
+]
+RANKS = [1, 2, 3, 4]
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--peridot", required=True)
+    p.add_argument("--source", required=True)
+    p.add_argument("--work", required=True)
+    p.add_argument("--mpirun", default=shutil.which("mpirun") or "mpirun")
+    a = p.parse_args()
+    shutil.rmtree(a.work, ignore_errors=True)
+    os.makedirs(a.work)
+    env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1")
+    passed = failed = 0
+
+    def check(ok, what):
+        nonlocal passed, failed
+        print(("ok   " if ok else "FAIL ") + what, flush=True)
+        passed, failed = passed + bool(ok), failed + (not ok)
+
+    def peridot(args, ranks=None, timeout=600):
+        cmd = [a.peridot] + args if ranks is None else [a.mpirun, "--oversubscribe", "-np", str(ranks), a.peridot] + args
+        return subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+
+    for deck, what in DECKS:
+        path = os.path.join(a.source, deck)
+        name = os.path.basename(os.path.dirname(deck)) if deck.endswith("/deck.yaml") else os.path.splitext(os.path.basename(deck))[0]
+        serial = os.path.join(a.work, name, "serial")
+        r = peridot(["run", "-q", "-o", serial, path])
+        check(r.returncode == 0, f"{name}: serial run ({what})" + ("" if r.returncode == 0 else "\n" + r.stderr))
+        if r.returncode != 0:
+            continue
+        outputs = sorted(f for f in os.listdir(serial) if f != "run.log")
+        for n in RANKS:
+            out = os.path.join(a.work, name, f"np{n}")
+            r = peridot(["run", "-q", "-o", out, path], ranks=n)
+            if r.returncode != 0:
+                check(False, f"{name}: {n} ranks run\n{r.stdout}\n{r.stderr}")
+                continue
+            def identical(f):
+                mine, theirs = os.path.join(out, f), os.path.join(serial, f)
+                if not os.path.exists(mine):
+                    return False
+                if f == "resolved_deck.yaml":  # names its own output directory
+                    return open(mine).read().replace(out, serial) == open(theirs).read()
+                return filecmp.cmp(mine, theirs, shallow=False)
+            same = [f for f in outputs if identical(f)]
+            check(same == outputs, f"{name}: {n} ranks, every byte of {', '.join(outputs)} as serial"
+                  + ("" if same == outputs else f" (differ: {sorted(set(outputs) - set(same))})"))
+
+    # A deck error: reported once, exit 2, nothing written.
+    bad = os.path.join(a.source, "tests", "data", "decks", "bad_poisson.yaml")
+    out = os.path.join(a.work, "bad")
+    r = peridot(["run", "-q", "-o", out, bad], ranks=3)
+    errors = [line for line in r.stderr.splitlines() if ": error: " in line]
+    check(r.returncode == 2 and len(errors) == 1 and not os.path.exists(out),
+          f"bad deck on 3 ranks: exit {r.returncode}, {len(errors)} error line(s), nothing written")
+    # Only the ranks that own a correspondence point bonded to the lps plate can see this one.
+    bad = os.path.join(a.source, "tests", "data", "decks", "bad_correspondence_interface.yaml")
+    out = os.path.join(a.work, "bad_interface")
+    r = peridot(["run", "-q", "-o", out, bad], ranks=3)
+    errors = [line for line in r.stderr.splitlines() if ": error: " in line]
+    check(r.returncode == 2 and len(errors) == 1 and ":22:3: error: bodies.rod" in r.stderr and not os.path.exists(out),
+          f"set-up error seen by some ranks only: exit {r.returncode}, {len(errors)} error line(s) "
+          f"({errors[0] if errors else r.stderr.strip()[:200]})")
+
+    # A numerical failure: every rank stops with the failing rank's message, exit 3, outputs readable.
+    text = open(os.path.join(a.source, "tests", "regression", "decks", "exodus_small.yaml")).read()
+    text = text.replace("  num_steps: 120", "  num_steps: 400\n  time_step: 2e-6").replace("    damage: {critical_stretch: 0.002}\n", "")
+    blowup = os.path.join(a.work, "blowup.yaml")
+    open(blowup, "w").write(text)
+    out = os.path.join(a.work, "blowup")
+    r = peridot(["run", "-q", "-o", out, blowup], ranks=2)
+    messages = re.findall(r"error: non-finite \w+ at step \d+, time [0-9.e+-]+ s, point \d+", r.stderr)
+    check(r.returncode == 3 and len(messages) == 1 and os.path.getsize(os.path.join(out, "small.e")) > 0
+          and "error: non-finite" in open(os.path.join(out, "run.log")).read(),
+          f"blow-up on 2 ranks: exit {r.returncode}, {len(messages)} message(s), frames and log kept")
+
+    r = peridot(["check", os.path.join(a.source, "tests", "regression", "decks", "mpi_mixed.yaml")], ranks=2)
+    check(r.returncode == 0 and r.stdout.count(": valid") == 1 and re.search(r"ranks +2 \(owned points", r.stdout),
+          "peridot check on 2 ranks prints one description with the decomposition\n" + r.stdout)
+    print(f"{passed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
