@@ -10,6 +10,9 @@
 //   --model lps_plastic [--yield-stress 1e6]   (a small σ_y makes every point flow: the costly case)
 //   --model lps_viscoelastic                   (λ_i = 0.5, τ_b = 10 µs)
 //   --lammps-failure-order   a bond failing in a step still carries that step's force, as in LAMMPS PERI
+//   mpirun -np R bench_explicit …   distributed: rates per core over all R × threads cores, the slowest
+//                                   rank's loop time, and its communication (halo exchanges and the
+//                                   per-step failure check: seconds, messages and bytes per step)
 #include <omp.h>
 #include <sys/resource.h>
 
@@ -23,6 +26,7 @@
 #include <numbers>
 #include <string>
 
+#include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/simulation.hpp"
 
 namespace {
@@ -136,25 +140,38 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  MpiSession mpi(argc, argv);
+  const Communicator comm = Communicator::world();
   const Options o = parse(argc, argv);
+  if (!o.dump.empty() && !comm.serial()) {
+    std::fprintf(stderr, "--dump needs one rank\n");
+    return 2;
+  }
   omp_set_num_threads(o.threads);
   const Problem problem = benchmark_problem(o);
 
   const auto t_setup = std::chrono::steady_clock::now();
   Simulation sim(problem);  // discretization, neighbour build, materials
   sim.model().bond_failure_after_force = o.lammps_failure_order;
-  const double setup_s = seconds_since(t_setup);
+  const double setup_s = comm.max(seconds_since(t_setup));
   sim.initialize();
+  comm.barrier();
+  const Halo::Traffic before = sim.communication();
   const auto t_run = std::chrono::steady_clock::now();
   const double cpu_start = cpu_seconds();
   for (int s = 0; s < o.steps; ++s) sim.step();
-  const double run_s = seconds_since(t_run);
-  const double run_cpu_s = cpu_seconds() - cpu_start;
+  const double run_s = comm.max(seconds_since(t_run));  // the slowest rank sets the pace
+  const double run_cpu_s = comm.max(cpu_seconds() - cpu_start);
+  Halo::Traffic traffic = sim.communication();
+  traffic.seconds -= before.seconds;
+  traffic.messages -= before.messages;
+  traffic.bytes -= before.bytes;
 
   const Totals totals = sim.totals();
-  const double points = static_cast<double>(sim.discretization().num_points());
-  const double bonds = static_cast<double>(sim.bonds().num_bonds());
-  const double updates_per_s_core = bonds * o.steps / run_s / o.threads;
+  const double points = static_cast<double>(sim.output_discretization().num_points());
+  const double bonds = static_cast<double>(sim.global_bond_count());
+  const double cores = static_cast<double>(o.threads) * comm.size();
+  const double updates_per_s_core = bonds * o.steps / run_s / cores;
   // Bond storage: neighbour index (4 B), broken flag (1 B), CSR offsets (8 B per point); inelastic models add
   // 8 B per history array and 4 B of partner-bond index.
   const double neighbor_bytes = 4, state_bytes = 1, offset_bytes = 8 * (points + 1) / bonds;
@@ -162,18 +179,27 @@ int main(int argc, char** argv) {
   const double history_bytes = history_arrays > 0 ? 8.0 * history_arrays + 4 : 0.0;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
+  const double rss_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  const double comm_s = comm.max(traffic.seconds);
+  const double messages = comm.max(static_cast<double>(traffic.messages)) / o.steps;
+  const double bytes = comm.max(static_cast<double>(traffic.bytes)) / o.steps;
+  const double ghosts = comm.max(static_cast<double>(sim.halo().ghosts()));
+  const double peak_rss_sum = static_cast<double>(comm.sum(static_cast<std::uint64_t>(rss_mib)));
+  if (!comm.is_root()) return 0;
   std::printf(
       "{\"code\": \"peridot\", \"model\": \"%s\", \"points\": %.0f, \"directed_bonds\": %.0f, \"steps\": %d, "
-      "\"threads\": %d, \"dt\": %.17g, \"setup_s\": %.4f, \"loop_s\": %.4f, \"loop_cpu_s\": %.4f, "
+      "\"ranks\": %d, \"threads\": %d, \"dt\": %.17g, \"setup_s\": %.4f, \"loop_s\": %.4f, \"loop_cpu_s\": %.4f, "
       "\"bond_updates_per_s_per_core\": %.4g, \"bond_updates_per_cpu_s\": %.4g, "
       "\"bytes_per_bond\": %.3f, \"bytes_per_bond_breakdown\": {\"neighbor_index\": %.0f, \"broken_flag\": %.0f, "
-      "\"csr_offsets\": %.3f, \"history_and_partner_index\": %.0f}, \"peak_rss_mib\": %.1f, \"kinetic_energy\": %.17g, "
-      "\"strain_energy\": %.17g, \"dissipated_energy\": %.17g, \"max_damage\": %.6g}\n",
-      o.model.c_str(), points, bonds, o.steps, o.threads, sim.time_step(), setup_s, run_s, run_cpu_s, updates_per_s_core,
-      bonds * o.steps / run_cpu_s,
+      "\"csr_offsets\": %.3f, \"history_and_partner_index\": %.0f}, \"peak_rss_mib\": %.1f, "
+      "\"communication\": {\"share_of_loop\": %.4f, \"seconds\": %.4f, \"messages_per_step_per_rank\": %.1f, "
+      "\"bytes_per_step_per_rank\": %.0f, \"ghosts_per_rank\": %.0f, \"peak_rss_mib_all_ranks\": %.0f}, "
+      "\"kinetic_energy\": %.17g, \"strain_energy\": %.17g, \"dissipated_energy\": %.17g, \"max_damage\": %.6g}\n",
+      o.model.c_str(), points, bonds, o.steps, comm.size(), o.threads, sim.time_step(), setup_s, run_s, run_cpu_s,
+      updates_per_s_core, bonds * o.steps / run_cpu_s / comm.size(),
       neighbor_bytes + state_bytes + offset_bytes + history_bytes, neighbor_bytes, state_bytes, offset_bytes, history_bytes,
-      static_cast<double>(usage.ru_maxrss) / 1024.0, totals.kinetic_energy, totals.strain_energy,
-      totals.dissipated_energy, totals.max_damage);
+      rss_mib, run_s > 0 ? comm_s / run_s : 0.0, comm_s, messages, bytes, ghosts, peak_rss_sum, totals.kinetic_energy,
+      totals.strain_energy, totals.dissipated_energy, totals.max_damage);
 
   if (!o.dump.empty()) {  // final state by lattice index, for comparison with LAMMPS
     // The last column is the fraction of a point's bonds that are broken, unweighted: LAMMPS's damage/atom

@@ -49,6 +49,7 @@ std::size_t Halo::sent_points() const {
 
 void Halo::exchange_bytes(unsigned char* field, std::size_t bytes_per_point) const {
   constexpr int tag = 7301;
+  const double start = MPI_Wtime();
   std::vector<MPI_Request> requests;
   requests.reserve(2 * peers_.size());
   for (const Peer& p : peers_) {
@@ -68,8 +69,11 @@ void Halo::exchange_bytes(unsigned char* field, std::size_t bytes_per_point) con
     if (p.send.empty()) continue;
     requests.emplace_back();
     MPI_Isend(begin, static_cast<int>(out - begin), MPI_BYTE, p.rank, tag, comm_.mpi(), &requests.back());
+    traffic_.messages += 1;
+    traffic_.bytes += static_cast<std::uint64_t>(out - begin);
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  traffic_.seconds += MPI_Wtime() - start;
 }
 
 }  // namespace peridot

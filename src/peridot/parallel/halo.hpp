@@ -47,6 +47,14 @@ class Halo {
   std::size_t peers() const { return peers_.size(); }
   std::size_t sent_points() const;
 
+  /// What the exchanges have cost since set-up, for the benchmarks: wall time inside exchange() (packing,
+  /// sending and waiting), messages sent and bytes sent.
+  struct Traffic {
+    double seconds = 0;
+    std::uint64_t messages = 0, bytes = 0;
+  };
+  const Traffic& traffic() const { return traffic_; }
+
  private:
   void exchange_bytes(unsigned char* field, std::size_t bytes_per_point) const;
 
@@ -54,6 +62,7 @@ class Halo {
   std::size_t owned_ = 0, ghosts_ = 0;  ///< owned_: where the ghost entries begin
   std::vector<Peer> peers_;
   mutable std::vector<unsigned char> send_buffer_;
+  mutable Traffic traffic_;
 };
 
 template <class T>

@@ -270,7 +270,17 @@ void Simulation::step() {
         << " s";
     failure = msg.str();
   }
+  const double start = comm_.serial() ? 0.0 : MPI_Wtime();
   agree_on_failure(failure);
+  if (!comm_.serial()) collective_seconds_ += MPI_Wtime() - start;
+}
+
+Halo::Traffic Simulation::communication() const {
+  Halo::Traffic t = halo_.traffic();
+  t.seconds += bond_halo_.traffic().seconds + collective_seconds_;
+  t.messages += bond_halo_.traffic().messages;
+  t.bytes += bond_halo_.traffic().bytes;
+  return t;
 }
 
 void Simulation::exchange_partner_bonds() {

@@ -110,6 +110,9 @@ class Simulation {
   std::size_t memory_bytes() const;
   /// Directed bonds of the whole problem (collective).
   std::uint64_t global_bond_count() const;
+  /// This rank's communication in the steps so far (benchmarks): the halo exchanges of points and partner
+  /// bonds, plus the per-step failure check (one small all-reduce) in seconds.
+  Halo::Traffic communication() const;
 
  private:
   /// Internal force at the current u (and, for correspondence blocks, the stress update over dt with the
@@ -133,6 +136,7 @@ class Simulation {
   std::size_t owned_ = 0;
   std::vector<std::uint32_t> global_index_;
   Halo halo_;
+  double collective_seconds_ = 0;  ///< in agree_on_failure
   Halo bond_halo_;  ///< partner-bond slots (BondList::reverse), for models that read their partner's bond
   /// Distributed only: the whole problem on every rank (set-up, node sets), and on rank 0 the gathered
   /// state of the last gather_outputs.
