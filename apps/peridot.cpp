@@ -92,6 +92,9 @@ int main(int argc, char** argv) {
     // Distributed, every rank holds the failing rank's message (Simulation::step).
     if (root) std::cerr << "\nerror: " << e.what() << "\noutputs written so far are closed and readable\n";
     return exit_numerical_error;
+  } catch (const peridot::OutputError& e) {
+    if (root) std::cerr << "error: " << e.what() << '\n';  // every rank stops with rank 0's message
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << '\n';
     // A failure that only this rank saw: the others cannot be reached any more; end them all.

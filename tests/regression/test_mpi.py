@@ -5,7 +5,8 @@ same bits on 1, 2, 3 and 4 ranks as a serial run: each deck runs once without mp
 the history and the resolved deck (but for its output directory) must match. Also: a deck error is reported once (not once per rank)
 with exit status 2 and nothing written, also when only some ranks can see it (a correspondence body bonded
 to another model's body, found from the local bonds); a numerical failure exits 3 on every rank with one
-message and the frames written so far readable; `peridot check` describes the decomposition."""
+message and the frames written so far readable; an output rank 0 cannot write stops every rank with one
+message; `peridot check` describes the decomposition."""
 import argparse
 import filecmp
 import os
@@ -99,6 +100,11 @@ def main():
     check(r.returncode == 3 and len(messages) == 1 and os.path.getsize(os.path.join(out, "small.e")) > 0
           and "error: non-finite" in open(os.path.join(out, "run.log")).read(),
           f"blow-up on 2 ranks: exit {r.returncode}, {len(messages)} message(s), frames and log kept")
+
+    # An output that cannot be written (rank 0 writes): every rank stops, one message, no hang.
+    r = peridot(["run", "-q", "-o", os.path.join(blowup, "out"), blowup], ranks=2, timeout=120)
+    check(r.returncode == 1 and sum(line.startswith("error: ") for line in r.stderr.splitlines()) == 1 and "cannot create" in r.stderr,
+          f"unwritable output directory on 2 ranks: exit {r.returncode}, one message")
 
     r = peridot(["check", os.path.join(a.source, "tests", "regression", "decks", "mpi_mixed.yaml")], ranks=2)
     check(r.returncode == 0 and r.stdout.count(": valid") == 1 and re.search(r"ranks +2 \(owned points", r.stdout),

@@ -41,6 +41,13 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A failure to write an output (disk full, no permission) during a run. Distributed, every rank throws it
+/// with rank 0's message, so that every rank stops and one reports it.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// An internal invariant that a user can break through the API (always checked).
 [[noreturn]] void fail_invariant(const char* expr, const char* file, int line, const std::string& message);
 

@@ -220,13 +220,11 @@ void run_problem(const Problem& problem, const RunOptions& options) {
       try {
         write();
       } catch (const std::exception& e) {
-        if (comm.serial()) throw;
         failure = e.what();
       }
     }
-    if (comm.serial()) return;
     const int failing = comm.first_rank_with(!failure.empty());
-    if (failing >= 0) throw std::runtime_error(comm.broadcast(failure, failing));
+    if (failing >= 0) throw OutputError(comm.broadcast(failure, failing));
   };
 
   const OutputSpec& output = problem.output;
