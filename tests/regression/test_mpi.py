@@ -101,6 +101,18 @@ def main():
           and "error: non-finite" in open(os.path.join(out, "run.log")).read(),
           f"blow-up on 2 ranks: exit {r.returncode}, {len(messages)} message(s), frames and log kept")
 
+    # A correspondence point whose deformation gradient inverts (a cube hit at 20 km/s) fails inside the
+    # force of a step, between two exchanges: every rank still stops, with one message.
+    text = open(os.path.join(a.source, "tests", "regression", "decks", "correspondence_small.yaml")).read()
+    text = re.sub(r"\{velocity: \{.*\}\}", '{velocity: {x: "-2e4*sin(3000*x)"}}', text)
+    inverted = os.path.join(a.work, "inverted.yaml")
+    open(inverted, "w").write(text)
+    out = os.path.join(a.work, "inverted")
+    r = peridot(["run", "-q", "-o", out, inverted], ranks=3, timeout=120)
+    messages = re.findall(r"error: at step \d+, time [0-9.e+-]+ s: correspondence model: point \d+", r.stderr)
+    check(r.returncode == 3 and len(messages) == 1 and os.path.exists(os.path.join(out, "history.csv")),
+          f"correspondence failure inside a step on 3 ranks: exit {r.returncode}, {len(messages)} message(s)")
+
     # An output that cannot be written (rank 0 writes): every rank stops, one message, no hang.
     r = peridot(["run", "-q", "-o", os.path.join(blowup, "out"), blowup], ranks=2, timeout=120)
     check(r.returncode == 1 and sum(line.startswith("error: ") for line in r.stderr.splitlines()) == 1 and "cannot create" in r.stderr,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <string>
 #include <utility>
 #include <variant>
@@ -145,15 +146,21 @@ bool CorrespondenceBlocks::empty() const { return impl_->blocks.empty(); }
 void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField& v, double dt, VectorField& f,
                                          MaterialHistory& history) {
   Impl& m = *impl_;
-  for (AnyBlock& any : m.blocks)
-    std::visit([&](auto& block) { compute_kinematics(m.ctx, u, v, m.kin, block.range); }, any);
-  for (AnyBlock& any : m.blocks)
-    std::visit([&](auto& block) { update_block_stress(m.ctx, m.kin, dt, block, m.stress, history.dissipation.data()); },
-               any);
+  std::exception_ptr failure;
+  try {
+    for (AnyBlock& any : m.blocks)
+      std::visit([&](auto& block) { compute_kinematics(m.ctx, u, v, m.kin, block.range); }, any);
+    for (AnyBlock& any : m.blocks)
+      std::visit([&](auto& block) { update_block_stress(m.ctx, m.kin, dt, block, m.stress, history.dissipation.data()); },
+                 any);
+  } catch (const NumericalError&) {
+    failure = std::current_exception();  // after the exchange: the other ranks wait for this rank's messages
+  }
   if (m.halo) {  // what the gather reads of a ghost partner
     m.halo->exchange(m.stress.force_tensor.data(), 9);
     m.halo->exchange(m.kin.deformation_gradient.data(), 9);
   }
+  if (failure) std::rethrow_exception(failure);
   for (AnyBlock& any : m.blocks)
     std::visit([&](auto& block) {
       compute_correspondence_force(m.ctx, m.kin, m.stress, u, f, block.range, &m.hourglass_force);

@@ -140,11 +140,11 @@ void Simulation::initialize() {
   std::string failure;
   try {
     compute_forces(0.0);
-    if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, 0.0);
-    exchange_partner_bonds();
   } catch (const NumericalError& e) {
-    failure = e.what();
+    failure = e.what();  // every exchange below still runs: the other ranks wait for this rank's messages
   }
+  if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, 0.0);
+  exchange_partner_bonds();
   agree_on_failure(failure);
   set_time_step(model_.params, dt_);
 }
@@ -243,11 +243,13 @@ void Simulation::step() {
   std::string failure;
   try {
     compute_forces(dt);
-    if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
-    exchange_partner_bonds();
   } catch (const NumericalError& e) {
-    failure = e.what();  // reported below, once every rank has reached the same point
+    // Reported below, once every rank has reached the same point; every exchange until then still runs,
+    // since the other ranks wait for this rank's messages.
+    failure = e.what();
   }
+  if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
+  exchange_partner_bonds();
   add_work();
 
   kick(0.5 * dt);
