@@ -73,6 +73,19 @@ def main():
             check(same == outputs, f"{name}: {n} ranks, every byte of {', '.join(outputs)} as serial"
                   + ("" if same == outputs else f" (differ: {sorted(set(outputs) - set(same))})"))
 
+    # The other partitioners give other splits and the same bits.
+    mixed = os.path.join(a.source, "tests", "regression", "decks", "mpi_mixed.yaml")
+    for method in ("rib", "hsfc"):
+        deck = os.path.join(a.work, f"mixed_{method}.yaml")  # the Exodus title names the deck: a serial run of it
+        open(deck, "w").write(open(mixed).read().replace("\nsolver:", f"\ndecomposition: {{method: {method}}}\nsolver:"))
+        serial, out = os.path.join(a.work, f"mixed_{method}", "serial"), os.path.join(a.work, f"mixed_{method}", "np3")
+        r = peridot(["run", "-q", "-o", serial, deck])
+        if r.returncode == 0:
+            r = peridot(["run", "-q", "-o", out, deck], ranks=3)
+        same = r.returncode == 0 and all(filecmp.cmp(os.path.join(serial, f), os.path.join(out, f), shallow=False)
+                                         for f in ("small.e", "history.csv"))
+        check(same, f"mpi_mixed: decomposition {method} on 3 ranks, every byte of small.e and history.csv as serial")
+
     # A deck error: reported once, exit 2, nothing written.
     bad = os.path.join(a.source, "tests", "data", "decks", "bad_poisson.yaml")
     out = os.path.join(a.work, "bad")

@@ -575,6 +575,12 @@ struct Parser {
     parse_body_forces(r["body_forces"]);
     parse_rigid_walls(r["rigid_walls"]);
     if (r.given("solver")) parse_solver(r["solver"]);
+    if (r.given("decomposition")) {
+      MapReader d(ctx, r["decomposition"].node, r["decomposition"].key_pos, "decomposition",
+                  deck_section("decomposition").keys);
+      const std::string& method = d["method"].text;
+      p.partition = method == "rib" ? PartitionMethod::rib : method == "hsfc" ? PartitionMethod::hsfc : PartitionMethod::rcb;
+    }
     if (r.given("output")) {
       parse_output(r["output"]);
     } else if (!r.present("output")) {

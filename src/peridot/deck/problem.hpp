@@ -24,6 +24,8 @@ enum class PlaneKind { none, stress, strain };                      ///< none in
 /// horizon). `extended` also bonds the cells centred just beyond δ (up to δ + ½Δx), which converges
 /// to the exact integrals; `horizon` bonds only |ξ| ≤ δ, the convention of LAMMPS PERI.
 enum class PartialVolumeKind { none, extended, horizon };
+/// Zoltan's geometric partitioners for a distributed run (parallel/partition.hpp).
+enum class PartitionMethod { rcb, rib, hsfc };
 
 /// Isotropic elastic constants, all four resolved from the two (or, for PMB, one) the deck gives.
 struct ElasticConstants {
@@ -180,6 +182,7 @@ struct Problem {
   std::vector<BodyForceSpec> body_forces;
   std::vector<RigidWallSpec> rigid_walls;
   SolverSpec solver;
+  PartitionMethod partition = PartitionMethod::rcb;  ///< decomposition.method
   OutputSpec output;
   std::vector<Diagnostic> warnings;  ///< deck problems that do not stop the run (e.g. an unusual horizon)
 

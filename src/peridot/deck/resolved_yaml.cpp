@@ -255,6 +255,10 @@ void emit_loads(YAML::Emitter& out, const Problem& p) {
 }
 
 void emit_solver_and_output(YAML::Emitter& out, const Problem& p) {
+  const char* partition[] = {"rcb", "rib", "hsfc"};
+  out << YAML::Key << "decomposition" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "method" << YAML::Value << partition[static_cast<int>(p.partition)];
+  out << YAML::EndMap;
   out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
   if (p.solver.end_time) out << YAML::Key << "end_time" << YAML::Value << number(*p.solver.end_time);
   if (p.solver.num_steps) out << YAML::Key << "num_steps" << YAML::Value << *p.solver.num_steps;

@@ -183,6 +183,7 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "body_forces", .type = VT::sequence, .description = "force per volume"},
                 {.key = "rigid_walls", .type = VT::sequence, .description = "rigid frictionless planes the points cannot cross"},
                 {.key = "solver", .type = VT::mapping, .description = "explicit time integration", .required = true},
+                {.key = "decomposition", .type = VT::mapping, .description = "how a distributed run (mpirun) splits the points"},
                 {.key = "output", .type = VT::mapping, .description = "Exodus fields, CSV history, progress"}}});
   s.push_back({"discretization", "the point lattice",
                {{.key = "dimension", .type = VT::integer, .range = {2, 3}, .description = "2 or 3", .required = true},
@@ -297,6 +298,12 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "damping", .unit = Unit::rate, .default_yaml = "0", .range = {0, infinity, false, true},
                  .description = "mass-proportional viscous damping c (1/s): free velocities decay as e^(−ct); "
                                 "for relaxing to static equilibrium (the energy it removes is not in the history)"}}});
+  s.push_back({"decomposition", "the split of the points over the ranks of a distributed run (docs/parallel.md); "
+               "results are the same bits whatever the split",
+               {{.key = "method", .type = VT::choice, .default_yaml = "rcb",
+                 .description = "Zoltan's geometric partitioner, weighted by bond count: rcb (recursive coordinate "
+                                "bisection), rib (recursive inertial bisection), hsfc (Hilbert space-filling curve)",
+                 .choices = {"rcb", "rib", "hsfc"}}}});
   s.push_back({"output", "what is written, relative to the deck's folder",
                {{.key = "directory", .type = VT::text, .default_yaml = "output", .description = "output folder, relative to the deck"},
                 {.key = "exodus", .type = VT::mapping, .description = "Exodus II fields (see output.exodus); omit for none"},

@@ -7,10 +7,11 @@
 
 namespace peridot {
 
-LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options) {
+LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options,
+                      PartitionMethod method) {
   const std::size_t n = global.num_points();
   const std::size_t begin = slice_begin(n, comm.rank(), comm.size()), end = slice_begin(n, comm.rank() + 1, comm.size());
-  const std::vector<int> owner = partition_points(comm, global, count_bonds(global, options, begin, end));
+  const std::vector<int> owner = partition_points(comm, global, count_bonds(global, options, begin, end), method);
 
   LocalDomain d;
   std::vector<std::uint32_t> owned;

@@ -27,7 +27,8 @@ struct LocalDomain {
 };
 
 /// Partitions the global discretization and builds this rank's domain. Collective.
-LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options);
+LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options,
+                      PartitionMethod method = PartitionMethod::rcb);
 
 /// For the models that read their partner's bond (history, correspondence weights): fills
 /// domain.bonds.reverse — the local bond j → i where j is owned, else a partner-bond slot (fields.hpp) —

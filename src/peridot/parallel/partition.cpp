@@ -50,7 +50,7 @@ void geometry(void* data, int, int, int count, ZOLTAN_ID_PTR global_ids, ZOLTAN_
 }  // namespace
 
 std::vector<int> partition_points(const Communicator& comm, const Discretization& disc,
-                                  const std::vector<std::uint64_t>& slice_weight) {
+                                  const std::vector<std::uint64_t>& slice_weight, PartitionMethod method) {
   const std::size_t n = disc.num_points();
   if (comm.serial()) return std::vector<int>(n, 0);
   Slice slice{&disc, slice_begin(n, comm.rank(), comm.size()), slice_begin(n, comm.rank() + 1, comm.size()), &slice_weight};
@@ -59,7 +59,8 @@ std::vector<int> partition_points(const Communicator& comm, const Discretization
   float version = 0;
   Zoltan_Initialize(0, nullptr, &version);
   Zoltan_Struct* zz = Zoltan_Create(comm.mpi());
-  for (auto [key, value] : {std::pair{"DEBUG_LEVEL", "0"}, {"LB_METHOD", "RCB"}, {"NUM_GID_ENTRIES", "1"},
+  const char* methods[] = {"RCB", "RIB", "HSFC"};
+  for (auto [key, value] : {std::pair{"DEBUG_LEVEL", "0"}, {"LB_METHOD", methods[static_cast<int>(method)]}, {"NUM_GID_ENTRIES", "1"},
                             {"NUM_LID_ENTRIES", "1"}, {"OBJ_WEIGHT_DIM", "1"}, {"RETURN_LISTS", "PARTS"},
                             {"IMBALANCE_TOL", "1.01"}, {"DETERMINISTIC", "1"}})
     Zoltan_Set_Param(zz, key, value);

@@ -1,5 +1,6 @@
 #pragma once
-// Which rank owns which point: recursive coordinate bisection (Zoltan's RCB) of the reference
+// Which rank owns which point: a geometric partition by Zoltan (recursive coordinate bisection by
+// default; recursive inertial bisection or a Hilbert space-filling curve on request) of the reference
 // positions, each point weighted by its bond count so that the ranks get equal bond work. Computed once,
 // from the reference configuration. Every rank holds the whole discretization; rank r hands Zoltan the
 // points of its slice [r·N/P, (r+1)·N/P) with their weights, and every rank gets back the owner of every
@@ -8,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "peridot/deck/problem.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/state/fields.hpp"
 
@@ -21,6 +23,7 @@ inline std::size_t slice_begin(std::size_t n, int rank, int ranks) {
 /// Owner rank of every point. slice_weight: the bond counts of this rank's slice. Collective; on one rank
 /// every point is rank 0's.
 std::vector<int> partition_points(const Communicator& comm, const Discretization& disc,
-                                  const std::vector<std::uint64_t>& slice_weight);
+                                  const std::vector<std::uint64_t>& slice_weight,
+                                  PartitionMethod method = PartitionMethod::rcb);
 
 }  // namespace peridot

@@ -71,7 +71,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   } else {
     global_disc_ = std::move(global);
     global_node_sets_ = build_node_sets(problem_, global_disc_);
-    LocalDomain domain = decompose(comm_, global_disc_, neighborhood);
+    LocalDomain domain = decompose(comm_, global_disc_, neighborhood, problem_.partition);
     if (needs_partner_bonds) bond_halo_ = build_partner_bonds(comm_, domain);
     disc_ = std::move(domain.disc);
     bonds_ = std::move(domain.bonds);
