@@ -1,6 +1,7 @@
 #include "peridot/parallel/halo.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "peridot/core/error.hpp"
@@ -50,6 +51,8 @@ std::size_t Halo::sent_points() const {
 void Halo::exchange_bytes(unsigned char* field, std::size_t bytes_per_point) const {
   constexpr int tag = 7301;
   const double start = MPI_Wtime();
+  PERIDOT_REQUIRE(std::max(sent_points(), ghosts_) * bytes_per_point <= static_cast<std::size_t>(INT32_MAX),
+                  "a halo message over 2 GiB: use more ranks");
   std::vector<MPI_Request> requests;
   requests.reserve(2 * peers_.size());
   for (const Peer& p : peers_) {

@@ -101,6 +101,8 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   any_dilatation_ = model_.any_dilatation();
   any_damage_ = model_.any_damage();
   history_arrays_ = model_.bond_history_arrays();
+  any_plastic_ = std::any_of(model_.params.begin(), model_.params.end(),
+                             [](const MaterialParams& p) { return p.model == ModelKind::lps_plastic; });
 
   state_.resize(disc_.num_points());
   if (history_arrays_ > 0) state_.size_history(bonds_.num_bonds() + bonds_.partner_slots, history_arrays_);
@@ -159,10 +161,11 @@ void Simulation::compute_forces(double dt) {
   }
   if (history_arrays_ > 0) {
     prepare_history(model_, state_.u, state_.dilatation, state_.history);
-    // What the force of an inelastic point's partner reads of it (lps_plastic.hpp).
-    halo_.exchange(state_.history.released_extension);
-    halo_.exchange(state_.history.yield_scale);
-    halo_.exchange(state_.history.deviatoric_moment);
+    if (any_plastic_) {  // what the force of a plastic point's partner reads of it (lps_plastic.hpp)
+      halo_.exchange(state_.history.released_extension);
+      halo_.exchange(state_.history.yield_scale);
+      halo_.exchange(state_.history.deviatoric_moment);
+    }
   }
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && fail_in_force_pass,
                          &state_.history);

@@ -159,7 +159,7 @@ class Simulation {
   double stable_dt_ = 0, dt_ = 0;
   std::int64_t total_steps_ = 0;
   std::vector<double> work_;  ///< J, external work done on each point since t = 0
-  bool any_dilatation_ = false, any_damage_ = false;
+  bool any_dilatation_ = false, any_damage_ = false, any_plastic_ = false;
   int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
   std::int64_t fragments_step_ = -1;  ///< the step state_.fragment was labelled at (-1: never)
   std::size_t fragment_count_ = 0;
