@@ -73,8 +73,15 @@ def main():
             check(same == outputs, f"{name}: {n} ranks, every byte of {', '.join(outputs)} as serial"
                   + ("" if same == outputs else f" (differ: {sorted(set(outputs) - set(same))})"))
 
-    # The other partitioners give other splits and the same bits.
+    # Threads inside ranks: 2 ranks of 2 threads each.
     mixed = os.path.join(a.source, "tests", "regression", "decks", "mpi_mixed.yaml")
+    serial, out = os.path.join(a.work, "mpi_mixed", "serial"), os.path.join(a.work, "mpi_mixed", "np2t2")
+    r = peridot(["run", "-q", "-t", "2", "-o", out, mixed], ranks=2)
+    check(r.returncode == 0 and all(filecmp.cmp(os.path.join(serial, f), os.path.join(out, f), shallow=False)
+                                    for f in ("small.e", "history.csv")),
+          "mpi_mixed: 2 ranks of 2 threads, every byte of small.e and history.csv as serial")
+
+    # The other partitioners give other splits and the same bits.
     for method in ("rib", "hsfc"):
         deck = os.path.join(a.work, f"mixed_{method}.yaml")  # the Exodus title names the deck: a serial run of it
         open(deck, "w").write(open(mixed).read().replace("\nsolver:", f"\ndecomposition: {{method: {method}}}\nsolver:"))
