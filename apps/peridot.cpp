@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
 
   try {
     if (info->parsed()) {
+      if (!root) return 0;
       if (model.empty()) peridot::print_schema(std::cout, markdown);
       else peridot::print_model_page(std::cout, *peridot::find_model(model), markdown);
       return 0;
