@@ -36,6 +36,13 @@ class Communicator {
   std::string broadcast(const std::string& text, int from) const;
   void barrier() const;
 
+  /// Personalised exchange: `values` holds count[r] values for each rank r, rank after rank; returns what
+  /// every rank sent to this one, source after source, and its counts per source in `received`.
+  std::vector<std::uint32_t> all_to_all(const std::vector<std::uint32_t>& values, const std::vector<int>& count,
+                                        std::vector<int>& received) const;
+  /// Offsets of consecutive groups of the given sizes (exclusive prefix sum).
+  static std::vector<int> offsets(const std::vector<int>& count);
+
   /// Concatenation of every rank's values in rank order, on rank 0 (other ranks get an empty vector).
   template <class T>
   std::vector<T> gather(const std::vector<T>& local) const;

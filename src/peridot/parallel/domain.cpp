@@ -98,7 +98,7 @@ Halo build_partner_bonds(const Communicator& comm, LocalDomain& d) {
   bonds.partner_slots = to_ghost.size();
 
   const int size = comm.size();
-  std::vector<int> request_count(size, 0), request_displ(size, 0);
+  std::vector<int> request_count(size, 0), asked_count;
   std::vector<std::uint32_t> requests;  // (global j, global i) of every slot, in slot order
   for (std::size_t k = 0; k < to_ghost.size(); ++k) {
     const std::uint64_t b = to_ghost[k];
@@ -110,13 +110,8 @@ Halo build_partner_bonds(const Communicator& comm, LocalDomain& d) {
     requests.push_back(d.global_index[bonds.neighbors[b]]);
     requests.push_back(d.global_index[i]);
   }
-  for (int r = 1; r < size; ++r) request_displ[r] = request_displ[r - 1] + request_count[r - 1];
-  std::vector<int> asked_count(size, 0), asked_displ(size, 0);
-  MPI_Alltoall(request_count.data(), 1, MPI_INT, asked_count.data(), 1, MPI_INT, comm.mpi());
-  for (int r = 1; r < size; ++r) asked_displ[r] = asked_displ[r - 1] + asked_count[r - 1];
-  std::vector<std::uint32_t> asked(static_cast<std::size_t>(asked_displ.back() + asked_count.back()));
-  MPI_Alltoallv(requests.data(), request_count.data(), request_displ.data(), MPI_UINT32_T, asked.data(),
-                asked_count.data(), asked_displ.data(), MPI_UINT32_T, comm.mpi());
+  const std::vector<std::uint32_t> asked = comm.all_to_all(requests, request_count, asked_count);
+  const std::vector<int> request_displ = Communicator::offsets(request_count), asked_displ = Communicator::offsets(asked_count);
 
   const auto owned_begin = d.global_index.begin(), owned_end = owned_begin + static_cast<std::ptrdiff_t>(d.owned);
   std::vector<Halo::Peer> peers;

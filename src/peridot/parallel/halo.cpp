@@ -17,15 +17,10 @@ Halo::Halo(const Communicator& comm, const std::vector<std::uint32_t>& owned_glo
   }
   const int size = comm.size();
   // Ask every owner for the points this rank holds as its ghosts.
-  std::vector<int> request_count(size, 0), request_displ(size, 0);
+  std::vector<int> request_count(size, 0), asked_count;
   for (int owner : ghost_owner) ++request_count[owner];
-  for (int r = 1; r < size; ++r) request_displ[r] = request_displ[r - 1] + request_count[r - 1];
-  std::vector<int> asked_count(size, 0), asked_displ(size, 0);
-  MPI_Alltoall(request_count.data(), 1, MPI_INT, asked_count.data(), 1, MPI_INT, comm.mpi());
-  for (int r = 1; r < size; ++r) asked_displ[r] = asked_displ[r - 1] + asked_count[r - 1];
-  std::vector<std::uint32_t> asked(static_cast<std::size_t>(asked_displ.back() + asked_count.back()));
-  MPI_Alltoallv(ghost_global.data(), request_count.data(), request_displ.data(), MPI_UINT32_T, asked.data(),
-                asked_count.data(), asked_displ.data(), MPI_UINT32_T, comm.mpi());
+  const std::vector<std::uint32_t> asked = comm.all_to_all(ghost_global, request_count, asked_count);
+  const std::vector<int> request_displ = Communicator::offsets(request_count), asked_displ = Communicator::offsets(asked_count);
 
   for (int r = 0; r < size; ++r) {
     if (request_count[r] == 0 && asked_count[r] == 0) continue;
