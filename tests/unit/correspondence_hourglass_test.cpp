@@ -3,7 +3,8 @@
 // point whose family is point-symmetric (odd neighbours all move by −2a s_i e_x, and Σ_odd ξ = 0), so the
 // correspondence force of eq 25 cannot resist it. A small explicit dynamic run (velocity Verlet, the step
 // order of reference/algorithms.md §3: F at u^{n+1}, Ḟ from v^{n+1/2}) started with a checkerboard velocity
-// shows the mode drifting away without control and oscillating, bounded, with C_HG = 0.05 (the default) and 0.02 (the Taylor example).
+// shows the mode drifting away without control and oscillating, bounded, with C_HG = 0.05 (the default) and
+// 0.02 (the Taylor example).
 #include <gtest/gtest.h>
 
 #include <cmath>
