@@ -58,7 +58,9 @@ def measure(exodus_path, spacing):
     deformed cell of the face layer; outermost centres + Δx, face layer and widest section); the largest εp."""
     ds = netCDF4.Dataset(exodus_path, "r")
     ds.set_auto_mask(False)
-    names = [s.strip() for s in netCDF4.chartostring(ds.variables["name_nod_var"][:]).tolist()]
+    # A name ends at its first NUL; Exodus leaves the rest of the row unwritten (netCDF no-fill mode), so it
+    # may hold stray bytes that netCDF4.chartostring cannot decode.
+    names = [row.tobytes().split(b"\0")[0].decode().strip() for row in np.asarray(ds.variables["name_nod_var"][:])]
     x = np.array([ds.variables["coord" + a][:] for a in "xyz"])
     last = ds.dimensions["time_step"].size - 1
     y = x + np.array([nodal(ds, names, "displacement_" + a, last) for a in "xyz"])
@@ -135,6 +137,7 @@ def main():
                                                   "taylor_6061T6_house1995.csv"))
     p.add_argument("--plot", help="write a figure of Lf/L0 and Df/D0 against the experiment")
     p.add_argument("--reuse", action="store_true", help="measure existing runs instead of running again")
+    p.add_argument("--only", help="comma-separated shot names of the set to run (default: all of them)")
     p.add_argument("--check-short", action="store_true",
                    help="exit 1 unless the short run's Lf/L0 is in [0.83, 0.89] and its energy balance within 1 %%")
     a = p.parse_args()
@@ -142,7 +145,8 @@ def main():
     deck_hourglass = float(re.search(r"hourglass_coefficient: ([0-9.eE+-]+)", template).group(1))
     shots = experiment(a.data) if os.path.exists(a.data) else []
     results = []
-    for name, across, hf, ld, speed, end, *rest in SETS[a.set]:
+    chosen = [shot for shot in SETS[a.set] if not a.only or shot[0] in a.only.split(",")]
+    for name, across, hf, ld, speed, end, *rest in chosen:
         chg = rest[0] if rest else (a.hourglass if a.hourglass is not None else deck_hourglass)
         run_dir = os.path.join(os.path.abspath(a.out), name)
         os.makedirs(run_dir, exist_ok=True)
