@@ -210,7 +210,8 @@ def plot(results, shots, path):
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
-    axes[0].set_title("Peridot (x: 20 across, δ = 3Δx; +: convergence runs)", fontsize=9)
+    axes[0].set_title(f"Peridot (x: 20 across, δ = 3Δx, C_HG = {results[0]['chg']:g}; +: convergence runs)", fontsize=9)
+    axes[1].set_title("Df: area-equivalent diameter of the face layer", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
 
