@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -178,17 +180,34 @@ solver: {{end_time: 12 us}}
   double best = 1;
   for (std::size_t i = 0; i < disc.num_points(); ++i)
     if (const double d = norm(disc.x.get(i) - Vec3{0, 0, 0.5 * length}); d < best) best = d, centre = i;
+  // The gauge section: the cross-section through the centre, i.e. the two layers of points nearest z = L/2
+  // (|z − L/2| < Δx). Its volume-weighted mean σ_zz is the axial force over the current area: the true stress
+  // of a tension test.
+  std::vector<std::size_t> section;
+  double section_volume = 0;
+  for (std::size_t i = 0; i < disc.num_points(); ++i)
+    if (std::abs(disc.x.get(i)[2] - 0.5 * length) < 0.4e-3) section.push_back(i), section_volume += disc.volume[i];
   sim.initialize();
-  std::vector<double> strain, stress, von_mises, lateral, eqps;
+  std::vector<double> times, strain, stress, von_mises, lateral, eqps, section_strain, section_stress, section_vm;
   while (sim.state().step < sim.total_steps()) {
     sim.step();
     sim.update_output_fields();
     const auto& out = sim.state().point_outputs;
+    times.push_back(sim.state().time);
     strain.push_back(out.at("green_lagrange_strain_zz")[centre]);
     stress.push_back(out.at("cauchy_stress_zz")[centre]);
     von_mises.push_back(out.at("von_mises_stress")[centre]);
     lateral.push_back(out.at("cauchy_stress_xx")[centre]);
     eqps.push_back(sim.state().history.plastic_strain[centre]);
+    double e = 0, s = 0, vm = 0;
+    for (std::size_t i : section) {
+      e += disc.volume[i] * out.at("green_lagrange_strain_zz")[i];
+      s += disc.volume[i] * out.at("cauchy_stress_zz")[i];
+      vm += disc.volume[i] * out.at("von_mises_stress")[i];
+    }
+    section_strain.push_back(e / section_volume);
+    section_stress.push_back(s / section_volume);
+    section_vm.push_back(vm / section_volume);
   }
   // The centre's true strain rate, from its last F_zz over the run (ln F_zz / t).
   const double F_zz = std::sqrt(1 + 2 * strain.back());
@@ -241,9 +260,49 @@ solver: {{end_time: 12 us}}
   fmt::print("measured: centre true rate {:.0f} /s, final E_zz {:.4f}; 1 µs averages beyond E_zz = 0.01: von Mises vs "
              "driver worst {:.3g} (at E_zz = {:.4f}), σ_zz vs driver worst {:.3g}, largest |σ_xx| {:.3g} Pa\n",
              centre_rate, strain.back(), worst, worst_strain, worst_axial, worst_lateral);
+  // The gauge section's true stress (mean σ_zz) against its mean E_zz, beside the driver at the same strain.
+  std::vector<double> section_driver;
+  for (double e : section_strain) section_driver.push_back(driver_at(e));
+  double section_worst = 0, section_worst_strain = 0;
+  for (std::size_t k = half; k + half < section_strain.size(); ++k) {
+    if (section_strain[k] < 0.01) continue;
+    const double error = std::abs(window_mean(section_stress, k) / window_mean(section_driver, k) - 1);
+    if (error > section_worst) section_worst = error, section_worst_strain = section_strain[k];
+  }
+  fmt::print("measured: gauge section ({} points) 1 µs-averaged true stress (mean σ_zz) vs driver beyond E_zz = 0.01: "
+             "worst {:.3g} (at E_zz = {:.4f}), final mean E_zz {:.4f}\n",
+             section.size(), section_worst, section_worst_strain, section_strain.back());
+  // The curves for the figure (tests/verification/high_rate_tension.py): every step, raw and 1 µs-averaged.
+  if (const char* path = std::getenv("PERIDOT_TENSION_CSV")) {
+    std::FILE* f = std::fopen(path, "w");
+    ASSERT_NE(f, nullptr) << path;
+    std::fprintf(f, "# HighRateTensionFollowsTheMaterialPointDriver: nominal %g /s, centre true rate %.1f /s; "
+                    "gauge section = %zu points with |z - L/2| < dx; stresses Pa; *_avg = 1 us window means\n",
+                 rate, centre_rate, section.size());
+    std::fprintf(f, "time_s,centre_Ezz,centre_szz,centre_vm,section_Ezz,section_szz,section_vm,"
+                    "driver_at_section_Ezz,section_Ezz_avg,section_szz_avg,driver_at_section_Ezz_avg,"
+                    "centre_Ezz_avg,centre_vm_avg,driver_at_centre_Ezz_avg\n");
+    for (std::size_t k = 0; k < strain.size(); ++k) {
+      const bool windowed = k >= half && k + half < strain.size();
+      auto avg = [&](const std::vector<double>& v) {
+        return windowed ? fmt::format("{:.9g}", window_mean(v, k)) : std::string();
+      };
+      std::fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s,%s,%s,%s,%s,%s\n", times[k], strain[k], stress[k],
+                   von_mises[k], section_strain[k], section_stress[k], section_vm[k], section_driver[k],
+                   avg(section_strain).c_str(), avg(section_stress).c_str(), avg(section_driver).c_str(),
+                   avg(strain).c_str(), avg(von_mises).c_str(), avg(driver_values).c_str());
+    }
+    std::fprintf(f, "# driver (uniaxial stress at the centre's true rate): E_zz,sigma_zz\n");
+    for (std::size_t k = 0; k < driver_strain.size(); k += 10)
+      std::fprintf(f, "#D,%.9g,%.9g\n", driver_strain[k], driver_stress[k]);
+    std::fclose(f);
+  }
   ASSERT_GT(strain.back(), 0.06);
   // Measured: von Mises within 1.1 % of the driver (centre rate 16655 /s, E_zz to 0.25); σ_zz within 10 %.
   EXPECT_LT(worst, 0.02);
+  // The target: the gauge section's true stress within 3 % of the driver (no necking in this run).
+  // Measured: 1.56 % (at E_zz = 0.037), mean −0.36 %, to E_zz = 0.23.
+  EXPECT_LT(section_worst, 0.03);
 }
 
 }  // namespace
