@@ -40,7 +40,9 @@ __all__ = ["Results", "read_coordinates", "read_times", "read_field", "unroll", 
 
 
 def _names(chars) -> list[str]:
-    return [str(s).strip() for s in netCDF4.chartostring(chars[:])]
+    # A name ends at its first NUL: Exodus leaves the rest of its row unwritten (netCDF no-fill mode), so
+    # the row may hold stray bytes that netCDF4.chartostring cannot decode.
+    return [row.tobytes().split(b"\0")[0].decode().strip() for row in np.asarray(chars[:])]
 
 
 class Results:

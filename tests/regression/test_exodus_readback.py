@@ -42,7 +42,8 @@ def names_ok(names, dim):
 
 
 def strings(var):
-    return [s.strip() for s in netCDF4.chartostring(var[:]).tolist()]
+    # A string ends at its first NUL: the rest of its row is left unwritten (netCDF no-fill mode).
+    return [row.tobytes().split(b"\0")[0].decode().strip() for row in np.asarray(var[:])]
 
 
 class Checker:
