@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
   const double rss_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
   // The rank that waits most also waits for the slower one (imbalance); the rank that waits least spends
   // about the transfer itself.
-  const double comm_s = comm.max(traffic.seconds), comm_min_s = -comm.max(-traffic.seconds);
+  const double comm_s = comm.max(traffic.seconds), comm_min_s = comm.min(traffic.seconds);
   const double messages = comm.max(static_cast<double>(traffic.messages)) / o.steps;
   const double bytes = comm.max(static_cast<double>(traffic.bytes)) / o.steps;
   const double ghosts = comm.max(static_cast<double>(sim.halo().ghosts()));

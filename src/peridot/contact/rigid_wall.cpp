@@ -11,7 +11,6 @@ namespace peridot {
 RigidWalls::RigidWalls(const Problem& problem, const ModelContext& model) : model_(&model) {
   for (const RigidWallSpec& s : problem.rigid_walls)
     walls_.push_back({s.name, s.point, s.normal, s.speed, s.stiffness_factor});
-  force_on_wall_.assign(walls_.size(), Vec3{});
   // Σ_j V_j c/ξ over a full family: ∫ 4πξ² (c/ξ) dξ = 2π c δ² in 3D; in 2D, V = h × area and
   // ∫ 2πξ h (c/ξ) dξ = 2π h c δ.
   for (const MaterialParams& p : model.params) {
@@ -27,7 +26,7 @@ double RigidWalls::pressure(const RigidWall& wall, Vec3 origin, const Discretiza
   return gap < 0 ? -gap * wall.stiffness_factor * point_stiffness_[static_cast<std::size_t>(disc.block[i])] : 0.0;
 }
 
-void RigidWalls::compute(const VectorField& u, double t, VectorField& b, std::size_t owned) {
+void RigidWalls::compute(const VectorField& u, double t, VectorField& b) {
   const Discretization& disc = *model_->disc;
   const std::size_t n = disc.num_points();
   if (b.size() != n) b.resize(n);
@@ -43,10 +42,6 @@ void RigidWalls::compute(const VectorField& u, double t, VectorField& b, std::si
       if (q == 0) continue;
       for (int d = 0; d < 3; ++d) bp[3 * i + d] += q * wall.normal[d];
     }
-    const double total = deterministic_sum(std::min(n, owned), [&](std::size_t i) {
-      return pressure(wall, origin, disc, u, i) * disc.volume[i];
-    });
-    force_on_wall_[w] = (-total) * wall.normal;
   }
 }
 

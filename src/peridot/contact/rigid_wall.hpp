@@ -33,13 +33,11 @@ class RigidWalls {
   bool empty() const { return walls_.empty(); }
   const std::vector<RigidWall>& walls() const { return walls_; }
 
-  /// Penalty force density of every wall on every point at time t into b (N/m³; zero where no contact), and
-  /// the force each wall receives (N), −Σ b V of its own contacts among the first `owned` points.
-  void compute(const VectorField& u, double t, VectorField& b, std::size_t owned = SIZE_MAX);
-  /// Force on wall w from the last compute (N); distributed, this rank's share.
-  Vec3 force_on_wall(std::size_t w) const { return force_on_wall_[w]; }
-  /// Force on wall w (N) from every point of `disc` at displacement u and time t, summed as compute() sums
-  /// it: the whole-problem force from a gathered state, the same bits for any number of ranks.
+  /// Penalty force density of every wall on every point at time t into b (N/m³; zero where no contact).
+  void compute(const VectorField& u, double t, VectorField& b);
+  /// Force on wall w (N), −Σ b V of its contacts, from every point of `disc` at displacement u and time t,
+  /// summed in point order: computed when the history asks for it (from the gathered state when
+  /// distributed), not in every step.
   Vec3 force_on_wall(std::size_t w, const Discretization& disc, const VectorField& u, double t) const;
 
  private:
@@ -49,7 +47,6 @@ class RigidWalls {
   const ModelContext* model_;
   std::vector<RigidWall> walls_;
   std::vector<double> point_stiffness_;  ///< κ / stiffness_factor per block (N/m⁴)
-  std::vector<Vec3> force_on_wall_;
 };
 
 }  // namespace peridot

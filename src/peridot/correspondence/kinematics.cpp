@@ -23,19 +23,24 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
   CorrespondenceContext ctx;
   ctx.disc = &disc;
   ctx.bonds = &bonds;
-  ctx.bond_weight.resize(bonds.num_bonds());
+  const std::size_t nnz = bonds.num_bonds();
+  ctx.bond_weight.resize(nnz + bonds.partner_slots);
   ctx.hourglass_stiffness.assign(blocks.size(), 0.0);
   const auto& x = disc.x;
+  // ω⟨ξ⟩ of a bond from a point of block `own` to one of block `other`, with its partial-volume factor.
+  auto weight = [&](const BlockGeometry& own, const BlockGeometry& other, double xi) {
+    return influence(own.influence, xi, own.horizon) *
+           partial_volume_factor(xi, std::max(own.horizon, other.horizon), partial_volume_radius);
+  };
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const BlockGeometry& gi = blocks[disc.block[i]];
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       const std::uint32_t j = bonds.neighbors[b];
       const BlockGeometry& gj = blocks[disc.block[j]];
-      const double xi = norm(x.get(j) - x.get(i));
-      const double pair_horizon = std::max(gi.horizon, gj.horizon);
-      ctx.bond_weight[b] =
-          influence(gi.influence, xi, gi.horizon) * partial_volume_factor(xi, pair_horizon, partial_volume_radius);
+      ctx.bond_weight[b] = weight(gi, gj, norm(x.get(j) - x.get(i)));
+      // A ghost partner's bond j → i (its slot past the rank's own bonds), as j's rank computes it.
+      if (bonds.reverse[b] >= nnz) ctx.bond_weight[bonds.reverse[b]] = weight(gj, gi, norm(x.get(i) - x.get(j)));
     }
   }
   return ctx;

@@ -41,7 +41,8 @@ struct CorrespondenceContext {
 
 /// Bond weights for a discretization whose blocks are described by `blocks`
 /// (indexed by disc.block). `partial_volume_radius` as in NeighborhoodOptions (0: none); the pair horizon
-/// for the partial-volume factor is the larger of the two blocks'.
+/// for the partial-volume factor is the larger of the two blocks'. Distributed, the bonds j → i of ghost
+/// partners get their weights too, in their partner-bond slots (BondList::partner_slots).
 CorrespondenceContext make_correspondence_context(const Discretization& disc, const BondList& bonds,
                                                   const std::vector<BlockGeometry>& blocks,
                                                   double partial_volume_radius = 0);

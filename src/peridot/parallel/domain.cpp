@@ -56,8 +56,15 @@ LocalDomain decompose(const Communicator& comm, const Discretization& global, co
   d.bonds.neighbors.resize(families.neighbors.size());
   for (std::size_t b = 0; b < families.neighbors.size(); ++b) d.bonds.neighbors[b] = local_of[families.neighbors[b]];
   d.bonds.broken.assign(families.neighbors.size(), 0);
-  d.ghost_owner = ghost_owner;
-  d.halo = Halo(comm, owned, ghosts, ghost_owner);
+  // Each owner is asked for the points this rank holds as ghosts: one global index per ghost.
+  std::vector<int> count(static_cast<std::size_t>(comm.size()), 0);
+  for (int r : ghost_owner) ++count[r];
+  d.halo = Halo::serve(comm, d.owned, ghosts, count, 1, [&](const std::uint32_t* global) {
+    const auto found = std::lower_bound(owned.begin(), owned.end(), *global);
+    PERIDOT_REQUIRE(found != owned.end() && *found == *global, "a ghost was asked of a rank that does not own it");
+    return static_cast<std::uint32_t>(found - owned.begin());
+  });
+  d.ghost_owner = std::move(ghost_owner);
   return d;
 }
 
@@ -85,50 +92,38 @@ Halo build_partner_bonds(const Communicator& comm, LocalDomain& d) {
   PERIDOT_REQUIRE(nnz <= UINT32_MAX, "more than 2^32 bonds on a rank: reverse bond indices need 64 bits");
   bonds.reverse.assign(nnz, 0);
   // Bonds to ghosts, grouped by the ghost's owner, in bond order within a group: one slot each.
-  std::vector<std::uint64_t> to_ghost;
+  struct ToGhost {
+    std::uint64_t bond;
+    std::uint32_t point;  ///< its owned end
+  };
+  std::vector<ToGhost> to_ghost;
   for (std::size_t i = 0; i < d.owned; ++i)
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       const std::uint32_t j = bonds.neighbors[b];
       if (j < d.owned) bonds.reverse[b] = static_cast<std::uint32_t>(find_bond(d, j, d.global_index[i]));
-      else to_ghost.push_back(b);
+      else to_ghost.push_back({b, static_cast<std::uint32_t>(i)});
     }
-  auto owner_of = [&](std::uint64_t b) { return d.ghost_owner[bonds.neighbors[b] - d.owned]; };
-  std::stable_sort(to_ghost.begin(), to_ghost.end(), [&](std::uint64_t a, std::uint64_t b) { return owner_of(a) < owner_of(b); });
-  PERIDOT_REQUIRE(nnz + to_ghost.size() <= UINT32_MAX, "more than 2^32 bonds on a rank: reverse bond indices need 64 bits");
+  auto owner_of = [&](const ToGhost& t) { return d.ghost_owner[bonds.neighbors[t.bond] - d.owned]; };
+  std::stable_sort(to_ghost.begin(), to_ghost.end(), [&](const ToGhost& a, const ToGhost& b) { return owner_of(a) < owner_of(b); });
+  PERIDOT_REQUIRE(nnz + to_ghost.size() <= UINT32_MAX, "more than 2^32 bonds and partner slots on a rank");
   bonds.partner_slots = to_ghost.size();
 
-  const int size = comm.size();
-  std::vector<int> request_count(size, 0), asked_count;
-  std::vector<std::uint32_t> requests;  // (global j, global i) of every slot, in slot order
+  // Each owner is asked for the bond j → i of every slot: (global j, global i).
+  std::vector<int> count(static_cast<std::size_t>(comm.size()), 0);
+  std::vector<std::uint32_t> requests;
   for (std::size_t k = 0; k < to_ghost.size(); ++k) {
-    const std::uint64_t b = to_ghost[k];
-    bonds.reverse[b] = static_cast<std::uint32_t>(nnz + k);
-    request_count[owner_of(b)] += 2;
-    const std::size_t i = static_cast<std::size_t>(std::upper_bound(bonds.offsets.begin(), bonds.offsets.begin() +
-                                                                    static_cast<std::ptrdiff_t>(d.owned) + 1, b) -
-                                                   bonds.offsets.begin()) - 1;
-    requests.push_back(d.global_index[bonds.neighbors[b]]);
-    requests.push_back(d.global_index[i]);
+    const ToGhost& t = to_ghost[k];
+    bonds.reverse[t.bond] = static_cast<std::uint32_t>(nnz + k);
+    ++count[owner_of(t)];
+    requests.push_back(d.global_index[bonds.neighbors[t.bond]]);
+    requests.push_back(d.global_index[t.point]);
   }
-  const std::vector<std::uint32_t> asked = comm.all_to_all(requests, request_count, asked_count);
-  const std::vector<int> request_displ = Communicator::offsets(request_count), asked_displ = Communicator::offsets(asked_count);
-
   const auto owned_begin = d.global_index.begin(), owned_end = owned_begin + static_cast<std::ptrdiff_t>(d.owned);
-  std::vector<Halo::Peer> peers;
-  for (int r = 0; r < size; ++r) {
-    if (request_count[r] == 0 && asked_count[r] == 0) continue;
-    Halo::Peer peer;
-    peer.rank = r;
-    peer.receive_begin = static_cast<std::size_t>(request_displ[r] / 2);
-    peer.receive_count = static_cast<std::size_t>(request_count[r] / 2);
-    for (int k = asked_displ[r]; k < asked_displ[r] + asked_count[r]; k += 2) {
-      const auto j = std::lower_bound(owned_begin, owned_end, asked[k]);
-      PERIDOT_REQUIRE(j != owned_end && *j == asked[k], "a partner bond was asked of a rank that does not own it");
-      peer.send.push_back(static_cast<std::uint32_t>(find_bond(d, static_cast<std::size_t>(j - owned_begin), asked[k + 1])));
-    }
-    peers.push_back(std::move(peer));
-  }
-  return Halo(comm, nnz, to_ghost.size(), std::move(peers));
+  return Halo::serve(comm, nnz, requests, count, 2, [&](const std::uint32_t* pair) {
+    const auto j = std::lower_bound(owned_begin, owned_end, pair[0]);
+    PERIDOT_REQUIRE(j != owned_end && *j == pair[0], "a partner bond was asked of a rank that does not own it");
+    return static_cast<std::uint32_t>(find_bond(d, static_cast<std::size_t>(j - owned_begin), pair[1]));
+  });
 }
 
 }  // namespace peridot

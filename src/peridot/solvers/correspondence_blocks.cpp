@@ -2,7 +2,6 @@
 // kinematics → stress → force sequence, and the energy and field outputs (correspondence_blocks.hpp).
 #include "peridot/solvers/correspondence_blocks.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <string>
@@ -16,7 +15,6 @@
 #include "peridot/correspondence/j2_viscoplastic.hpp"
 #include "peridot/correspondence/kinematics.hpp"
 #include "peridot/materials/registry.hpp"
-#include "peridot/neighbor/neighborhood.hpp"
 #include "peridot/solvers/simulation.hpp"
 
 namespace peridot {
@@ -64,27 +62,6 @@ void check_interfaces(const Problem& problem, const ModelContext& model) {
   }
 }
 
-/// The weight ω_j⟨ξ_ji⟩ (with its partial-volume factor) of every partner bond j → i whose j is a ghost, in
-/// its slot past the rank's own bonds: the same arithmetic as make_correspondence_context on j's rank.
-void add_partner_slot_weights(CorrespondenceContext& ctx, const BondList& bonds, const std::vector<BlockGeometry>& blocks,
-                              double partial_volume_radius) {
-  if (bonds.partner_slots == 0) return;
-  const std::size_t nnz = bonds.num_bonds();
-  const Discretization& disc = *ctx.disc;
-  ctx.bond_weight.resize(nnz + bonds.partner_slots);
-  for (std::size_t i = 0; i + 1 < bonds.offsets.size(); ++i)
-    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-      if (bonds.reverse[b] < nnz) continue;
-      const std::uint32_t j = bonds.neighbors[b];
-      const BlockGeometry& gi = blocks[disc.block[i]];
-      const BlockGeometry& gj = blocks[disc.block[j]];
-      const double xi = norm(disc.x.get(i) - disc.x.get(j));
-      const double pair_horizon = std::max(gj.horizon, gi.horizon);
-      ctx.bond_weight[bonds.reverse[b]] =
-          influence(gj.influence, xi, gj.horizon) * partial_volume_factor(xi, pair_horizon, partial_volume_radius);
-    }
-}
-
 // Symmetric tensors in the order of correspondence_output_names(): xx yy zz xy yz zx.
 const int symmetric_index[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
 
@@ -101,7 +78,6 @@ struct CorrespondenceBlocks::Impl {
   VectorField hourglass_force, previous_hourglass_force, previous_u;
   bool have_previous = false;
   std::vector<double> hourglass_work;  ///< per point (J)
-  std::size_t owned = 0;               ///< points whose work counts: the owned ones
 };
 
 CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo)
@@ -122,10 +98,6 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   check_interfaces(problem, model);
   const std::size_t n = model.disc->num_points();
   m.ctx = make_correspondence_context(*model.disc, *model.bonds, geometry, model.partial_volume_radius);
-  add_partner_slot_weights(m.ctx, *model.bonds, geometry, model.partial_volume_radius);
-  m.owned = model.ranges.empty() ? 0 : std::max_element(model.ranges.begin(), model.ranges.end(), [](auto a, auto b) {
-    return a.end < b.end;
-  })->end;
   for (std::size_t b : m.block_index) {
     const MaterialParams& p = model.params[b];
     m.ctx.hourglass_stiffness[b] = hourglass_stiffness(p.hourglass_coefficient, p.elastic.bulk_modulus, p.horizon);
@@ -195,11 +167,6 @@ void CorrespondenceBlocks::strain_energy_density(std::vector<double>& W) const {
       W[i] = elastic_energy_density(m.stress.unrotated_stress.get(i), m.kin.deformation_gradient.get(i).determinant(),
                                     p.elastic.bulk_modulus, p.elastic.shear_modulus);
   }
-}
-
-double CorrespondenceBlocks::hourglass_work() const {
-  const std::vector<double>& w = impl_->hourglass_work;
-  return deterministic_sum(std::min(w.size(), impl_->owned), [&](std::size_t i) { return w[i]; });
 }
 
 const std::vector<double>& CorrespondenceBlocks::point_hourglass_work() const { return impl_->hourglass_work; }

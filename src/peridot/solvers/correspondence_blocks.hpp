@@ -24,8 +24,7 @@ class CorrespondenceBlocks {
  public:
   /// The correspondence blocks of `model` (none: empty()). Throws InputError, at the body's position in
   /// the deck, for a bond between a correspondence block and another model's block. Distributed, `halo`
-  /// refreshes the ghosts' P K⁻¹ and F between the stress update and the force gather, and the weights
-  /// of the partner bonds j → i of ghost partners are computed here (BondList::partner_slots).
+  /// refreshes the ghosts' P K⁻¹ and F between the stress update and the force gather.
   CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo = nullptr);
   ~CorrespondenceBlocks();
   CorrespondenceBlocks(const CorrespondenceBlocks&) = delete;
@@ -41,10 +40,8 @@ class CorrespondenceBlocks {
 
   /// Stored elastic energy density (J/m³, per reference volume) into W at every correspondence point.
   void strain_energy_density(std::vector<double>& W) const;
-  /// Work done on the points by the hourglass forces since t = 0, with the sign of a stored energy (J):
-  /// W_hg = −Σ_steps Σ_i ½(f_hg^n + f_hg^{n+1})·(u^{n+1} − u^n) V_i, kept per point (point_hourglass_work,
-  /// J) and summed over the points in their order.
-  double hourglass_work() const;
+  /// Work done on each point by the hourglass forces since t = 0, with the sign of a stored energy (J):
+  /// W_hg,i = −Σ_steps ½(f_hg^n + f_hg^{n+1})·(u^{n+1} − u^n) V_i (Simulation sums it for the history).
   const std::vector<double>& point_hourglass_work() const;
   /// Fills state.point_outputs (names: output_field_names()) and history.plastic_strain (ε̄p of J2).
   void write_point_outputs(State& state) const;

@@ -82,7 +82,7 @@ std::string describe_setup(const Simulation& sim) {
     const double owned = static_cast<double>(sim.num_owned());
     const double ghosts = static_cast<double>(sim.halo().ghosts());
     out << fmt::format("ranks            {} (owned points per rank {:.0f} to {:.0f}, ghosts up to {:.0f})\n", comm.size(),
-                       -comm.max(-owned), comm.max(owned), comm.max(ghosts));
+                       comm.min(owned), comm.max(owned), comm.max(ghosts));
     out << fmt::format("memory           {:.1f} MiB on the largest rank (points and bonds)\n", comm.max(memory) / (1 << 20));
   }
   out << fmt::format("stable time step {:.6g} s (Silling–Askari)\n", sim.stable_time_step());

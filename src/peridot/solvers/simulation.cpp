@@ -108,6 +108,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   if (history_arrays_ > 0) state_.size_history(bonds_.num_bonds() + bonds_.partner_slots, history_arrays_);
   compute_weighted_volume(model_, state_.weighted_volume);
   halo_.exchange(state_.weighted_volume);
+  if (!comm_.serial()) gather_field(state_.weighted_volume.data(), 1, global_state_.weighted_volume);  // constant
   model_.inverse_weighted_volume.resize(disc_.num_points());
   for (std::size_t i = 0; i < disc_.num_points(); ++i) {
     const double m = state_.weighted_volume[i];
@@ -169,7 +170,7 @@ void Simulation::compute_forces(double dt) {
   }
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && fail_in_force_pass,
                          &state_.history);
-  if (!walls_->empty()) walls_->compute(state_.u, state_.time, wall_force_, owned_);
+  if (!walls_->empty()) walls_->compute(state_.u, state_.time, wall_force_);
   if (!has_correspondence()) return;
   try {
     correspondence_->compute_force(state_.u, state_.v, dt, state_.force, state_.history);
@@ -322,8 +323,6 @@ void Simulation::agree_on_failure(const std::string& message) const {
   throw NumericalError(comm_.broadcast(message, failing));
 }
 
-void Simulation::update_output_fields() { gather_outputs(true, false); }
-
 void Simulation::gather_outputs(bool fields, bool totals) {
   compute_damage(model_, state_.damage);
   fragments();
@@ -352,7 +351,6 @@ void Simulation::gather_outputs(bool fields, bool totals) {
   vector_field(state_.force, g.force);
   gather_field(state_.damage.data(), 1, g.damage);
   gather_field(state_.dilatation.data(), 1, g.dilatation);
-  gather_field(state_.weighted_volume.data(), 1, g.weighted_volume);
   gather_field(state_.history.plastic_strain.data(), 1, g.history.plastic_strain);
   gather_field(state_.history.dissipation.data(), 1, g.history.dissipation);
   gather_field(state_.fragment.data(), 1, g.fragment);
@@ -379,12 +377,6 @@ Totals Simulation::totals() {
   return output_totals();
 }
 
-double Simulation::external_work() {
-  if (comm_.serial()) return deterministic_sum(owned_, [&](std::size_t i) { return work_[i]; });
-  gather_field(work_.data(), 1, global_work_);
-  return comm_.is_root() ? deterministic_sum(global_work_.size(), [&](std::size_t i) { return global_work_[i]; }) : 0.0;
-}
-
 Totals Simulation::output_totals() const {
   Totals totals;
   const Discretization& disc = output_discretization();
@@ -398,9 +390,10 @@ Totals Simulation::output_totals() const {
   totals.kinetic_energy = deterministic_sum(n, [&](std::size_t i) {
     return 0.5 * density(i) * disc.volume[i] * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
   });
-  if (has_correspondence())
-    totals.hourglass_work = comm_.serial() ? correspondence_->hourglass_work()
-                                          : deterministic_sum(n, [&](std::size_t i) { return global_hourglass_work_[i]; });
+  if (has_correspondence()) {
+    const std::vector<double>& hourglass = comm_.serial() ? correspondence_->point_hourglass_work() : global_hourglass_work_;
+    totals.hourglass_work = deterministic_sum(n, [&](std::size_t i) { return hourglass[i]; });
+  }
   totals.strain_energy = deterministic_sum(n, [&](std::size_t i) { return W[i] * disc.volume[i]; });
   const double* dissipation = s.history.dissipation.data();
   totals.dissipated_energy = deterministic_sum(n, [&](std::size_t i) { return dissipation[i] * disc.volume[i]; });
@@ -416,24 +409,18 @@ Totals Simulation::output_totals() const {
   return totals;
 }
 
-std::size_t Simulation::fragments() {
+void Simulation::fragments() {
   // Bonds change only inside step() (and never without damage): one labelling per step serves both the
   // Exodus frame and the history row of that step.
   const std::int64_t step = any_damage_ ? state_.step : 0;
-  if (fragments_step_ != step) {
-    if (comm_.serial()) {
-      fragment_count_ = label_fragments(bonds_, disc_.input_id, state_.fragment);
-    } else {
-      label_fragments(bonds_, disc_.input_id, state_.fragment, owned_,
-                      [&](std::vector<double>& label) { halo_.exchange(label); },
-                      [&](bool changed) { return comm_.any(changed); });
-      std::uint64_t own = 0;
-      for (std::size_t i = 0; i < owned_; ++i) own += state_.fragment[i] == static_cast<double>(disc_.input_id[i]);
-      fragment_count_ = comm_.sum(own);
-    }
-    fragments_step_ = step;
-  }
-  return fragment_count_;
+  if (fragments_step_ == step) return;
+  if (comm_.serial())
+    label_fragments(bonds_, disc_.input_id, state_.fragment);
+  else
+    label_fragments(bonds_, disc_.input_id, state_.fragment, owned_,
+                    [&](std::vector<double>& label) { halo_.exchange(label); },
+                    [&](bool changed) { return comm_.any(changed); });
+  fragments_step_ = step;
 }
 
 Vec3 Simulation::reaction(const NodeSet& set) const {

@@ -63,8 +63,6 @@ class Simulation {
   std::size_t num_owned() const { return owned_; }
   const Communicator& communicator() const { return comm_; }
   const Halo& halo() const { return halo_; }
-  /// Global index of each local point (empty on one rank: the identity).
-  const std::vector<std::uint32_t>& global_index() const { return global_index_; }
   const BondList& bonds() const { return bonds_; }
   const std::vector<NodeSet>& node_sets() const { return node_sets_; }
   const ModelContext& model() const { return model_; }
@@ -75,8 +73,6 @@ class Simulation {
   double stable_time_step() const { return stable_dt_; }  ///< without safety factor (s)
   double time_step() const { return dt_; }                ///< the Δt the run uses (s)
   std::int64_t total_steps() const { return total_steps_; }
-  /// J, accumulated since t = 0 (the sum of every point's share; collective, the total on rank 0).
-  double external_work();
 
   /// Applies the initial conditions and computes the forces at t = 0.
   void initialize();
@@ -89,11 +85,9 @@ class Simulation {
   /// Whether some block uses the correspondence model (its history has an hourglass_work column).
   bool has_correspondence() const { return correspondence_ && !correspondence_->empty(); }
 
-  /// Refreshes damage and dilatation of every point, and the correspondence fields (for output; the step
-  /// keeps only what it needs).
-  void update_output_fields();
-  /// Computes what the outputs read (the fields of an Exodus frame when `fields`, the per-point terms of
-  /// the totals when `totals`) and, distributed, gathers them to rank 0. Collective.
+  /// Computes what the outputs read, which the step keeps only as far as it needs (damage, fragment labels,
+  /// and with `fields` the dilatation and correspondence fields of an Exodus frame, with `totals` the
+  /// per-point terms of the totals) and, distributed, gathers them to rank 0. Collective.
   void gather_outputs(bool fields, bool totals);
   /// After gather_outputs, on rank 0 (any rank when serial): the whole problem's points, node sets and
   /// state in the global point order, and its totals (totals requires gather_outputs(…, true)).
@@ -117,8 +111,8 @@ class Simulation {
  private:
   /// Internal force at the current u (and, for correspondence blocks, the stress update over dt with the
   /// current, mid-step, velocity).
-  /// Labels state_.fragment (once per step) and returns the number of fragments.
-  std::size_t fragments();
+  /// Labels state_.fragment, once per step (collective).
+  void fragments();
   void compute_forces(double dt);
   void kick(double half_dt);
   /// Copies this rank's owned values of a per-point field into the global field on rank 0.
@@ -162,7 +156,6 @@ class Simulation {
   bool any_dilatation_ = false, any_damage_ = false, any_plastic_ = false;
   int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
   std::int64_t fragments_step_ = -1;  ///< the step state_.fragment was labelled at (-1: never)
-  std::size_t fragment_count_ = 0;
 };
 
 /// Sum of term(i) over i < n in chunks of fixed size, chunk results added in order: bitwise the same for
