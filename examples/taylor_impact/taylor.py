@@ -33,9 +33,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 D0 = 7.595e-3  # m
 
 
-def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglass=None):
+def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglass=None, thermal=True):
     dx = D0 / across
     text = template
+    if not thermal:  # Foster's law as published: drop the thermal_softening section
+        text = re.sub(r"\n    thermal_softening:[^\n]*(\n      [^\n]*)+", "", text, count=1)
     if hourglass is not None:
         text = re.sub(r"hourglass_coefficient: [^\n]*", f"hourglass_coefficient: {hourglass}", text, count=1)
     text = re.sub(r"spacing: [^\n]*", f"spacing: {dx!r}", text, count=1)
@@ -119,6 +121,8 @@ SETS = {
     # 50 µs: the rod has left the anvil by 47 µs at 244 m/s (its kinetic energy is then 0.6 % of the initial)
     "convergence": [("conv_n20_d3", 20, 3.015, 5, 244, 50), ("conv_n20_d4", 20, 4.015, 5, 244, 50),
                     ("conv_n30_d3", 30, 3.015, 5, 244, 50)],
+    # Df/D0 of the fastest L0/D0 = 5 shot at 20, 30 and 40 points across (40: about 1 h on one core)
+    "resolution": [(f"res_n{n}_295", n, 3.015, 5, 295, 50) for n in (20, 30, 40)],
     # sensitivity of Df/D0 to the hourglass coefficient (a study, one shot; not a per-shot setting)
     "hourglass": [(f"hg{c}_n20_d3", 20, 3.015, 5, 244, 50, c) for c in (0.01, 0.02, 0.05)],
 }
@@ -131,6 +135,8 @@ def main():
     p.add_argument("--set", choices=sorted(SETS), default="ld5")
     p.add_argument("--out", default="taylor_runs")
     p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--no-thermal", action="store_true",
+                   help="without thermal softening (Foster's law as published); the deck's default has it")
     p.add_argument("--hourglass", type=float, help="hourglass coefficient C_HG for every shot (default: the deck's)")
     # The shared reference data sits beside the repository (../shared/reference).
     p.add_argument("--data", default=os.path.join(HERE, "..", "..", "..", "shared", "reference",
@@ -151,7 +157,7 @@ def main():
         run_dir = os.path.join(os.path.abspath(a.out), name)
         os.makedirs(run_dir, exist_ok=True)
         deck = os.path.join(run_dir, "deck.yaml")
-        open(deck, "w").write(make_deck(template, across, hf, ld, speed, end, chg))
+        open(deck, "w").write(make_deck(template, across, hf, ld, speed, end, chg, not a.no_thermal))
         if not (a.reuse and os.path.exists(os.path.join(run_dir, "output", "results.e"))):
             r = subprocess.run([a.peridot, "run", "-q", "-t", str(a.threads), deck], capture_output=True, text=True)
             if r.returncode != 0:

@@ -5,12 +5,15 @@
 //  - radial return (eq 50) keeps the stress on the yield surface in simple shear with large rotation;
 //  - objectivity (eqs 19–23): a rigid rotation after plastic stretching leaves τ and εp unchanged and
 //    rotates σ with the body;
+//  - adiabatic thermal softening: perfectly plastic, rate independent, thermal exponent 1 has the closed form
+//    σ = Y exp(−βY εp/(ρc(T_m − T_r))); the temperature is the heat of the plastic work; off = same bits;
 //  - Brent's method on known roots.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 #include "peridot/correspondence/bracketed_root.hpp"
 #include "peridot/correspondence/hypoelastic.hpp"
@@ -262,6 +265,87 @@ TEST(CorrDriver, RigidRotationAfterPlasticStretchRotatesStressOnly) {
   const double scale = a.cauchy_stress.cwiseAbs().maxCoeff();
   EXPECT_LT(tau_difference, 1e-13 * scale);
   EXPECT_LT(sigma_error, 1e-13 * scale);
+}
+
+// Perfectly plastic (n = ∞), rate independent (m = ∞), thermal exponent q = 1: dT = β σ dεp/(ρc) with
+// σ = Y(1 − T*) integrates to σ = Y exp(−a εp), T* = 1 − exp(−a εp), a = βY/(ρc(T_m − T_r)). A small
+// specific heat makes a ≈ 1.5 so that the softening is 26 % by εp = 0.2; the explicit temperature lags one
+// step, a first-order error.
+TEST(CorrDriver, J2AdiabaticThermalSofteningMatchesClosedForm) {
+  J2Viscoplastic law = rate_independent_6061();
+  law.hardening_exponent = std::numeric_limits<double>::infinity();
+  law.thermal = {.enabled = true, .density = 2700, .specific_heat = 100, .taylor_quinney = 0.9,
+                 .reference_temperature = 294, .melting_temperature = 925, .exponent = 1};
+  const double Y = law.yield_stress;
+  const double a = law.thermal.taylor_quinney * Y /
+                   (law.thermal.density * law.thermal.specific_heat *
+                    (law.thermal.melting_temperature - law.thermal.reference_temperature));
+  auto run = [&](double dt) {
+    UniaxialStressOptions options;
+    options.true_strain_rate = 1.0;
+    options.dt = dt;
+    options.num_steps = static_cast<int>(std::lround(0.2 / dt));  // ε = 0.2
+    return run_uniaxial_stress(law, options);
+  };
+  auto worst_error = [&](const auto& samples) {
+    double worst_stress = 0, worst_heat = 0, plastic_work = 0;
+    for (std::size_t k = 1; k < samples.size(); ++k) {
+      const auto& s = samples[k];
+      const double eqps = s.history.equivalent_plastic_strain;
+      if (eqps == 0) continue;
+      worst_stress = std::max(worst_stress, std::abs(s.cauchy_stress(0, 0) / (Y * std::exp(-a * eqps)) - 1));
+      // The temperature is the heat of the plastic work done so far, W_p = ∫ σ dεp (trapezoidal).
+      const auto& before = samples[k - 1];
+      plastic_work += 0.5 * (s.cauchy_stress(0, 0) + before.cauchy_stress(0, 0)) *
+                      (eqps - before.history.equivalent_plastic_strain);
+      const double heat = law.thermal.taylor_quinney * plastic_work / (law.thermal.density * law.thermal.specific_heat);
+      worst_heat = std::max(worst_heat, std::abs(s.history.temperature_rise / heat - 1));
+    }
+    return std::pair{worst_stress, worst_heat};
+  };
+  const auto samples = run(1e-5);
+  const auto [stress, heat] = worst_error(samples);
+  const auto [stress_half, heat_half] = worst_error(run(0.5e-5));
+  const auto& last = samples.back();
+  std::printf("J2 thermal softening: final εp %.4f, σ/Y %.4f (closed form %.4f), ΔT %.1f K; closed-form error "
+              "%.2e at Δt = 1e-5 s, %.2e at 5e-6 s; heat vs plastic work %.2e, %.2e\n",
+              last.history.equivalent_plastic_strain, last.cauchy_stress(0, 0) / Y,
+              std::exp(-a * last.history.equivalent_plastic_strain), last.history.temperature_rise, stress, stress_half,
+              heat, heat_half);
+  EXPECT_LT(last.cauchy_stress(0, 0) / Y, 0.78);  // the softening is really exercised
+  EXPECT_LT(stress, 1e-3);
+  EXPECT_NEAR(stress_half / stress, 0.5, 0.05);  // first order: the lagged temperature
+  EXPECT_LT(heat, 1e-3);
+  EXPECT_LT(heat_half, heat);
+  // The homologous temperature is clamped: at and above melting the flow stress is 0, never negative.
+  EXPECT_EQ(law.thermal_factor(0), 1.0);
+  EXPECT_EQ(law.thermal_factor(631), 0.0);
+  EXPECT_EQ(law.thermal_factor(2000), 0.0);
+  EXPECT_EQ(law.thermal_factor(-10), 1.0);
+}
+
+TEST(CorrDriver, J2WithoutThermalSofteningIsUnchangedAndStaysAtReferenceTemperature) {
+  const J2Viscoplastic plain = J2Viscoplastic::aluminium_6061_t6();
+  J2Viscoplastic hot = plain;
+  hot.thermal = {.enabled = true, .density = 2700, .specific_heat = 896, .taylor_quinney = 0.9,
+                 .reference_temperature = 294, .melting_temperature = 925, .exponent = 1.34};
+  UniaxialStressOptions options;
+  options.true_strain_rate = 8300;
+  options.dt = 1e-8;
+  options.num_steps = 2000;
+  const auto a = run_uniaxial_stress(plain, options), b = run_uniaxial_stress(hot, options);
+  // Off: no temperature, and the stress of the elastic steps (before any heating) is the same bits.
+  EXPECT_EQ(a.back().history.temperature_rise, 0.0);
+  for (std::size_t k = 0; k < a.size() && b[k].history.equivalent_plastic_strain == 0; ++k)
+    EXPECT_EQ(a[k].cauchy_stress(0, 0), b[k].cauchy_stress(0, 0));
+  // On: Foster's aluminium at 8300 /s to ε = 0.166 heats by β W_p/(ρc) ≈ 17 K and softens by ~1 %.
+  const double softening = b.back().cauchy_stress(0, 0) / a.back().cauchy_stress(0, 0);
+  std::printf("J2 at 8300 /s to ε = %.3f: ΔT %.2f K, stress ratio hot/plain %.5f\n",
+              std::log(b.back().deformation_gradient(0, 0)), b.back().history.temperature_rise, softening);
+  EXPECT_GT(b.back().history.temperature_rise, 10);
+  EXPECT_LT(b.back().history.temperature_rise, 30);
+  EXPECT_LT(softening, 1);
+  EXPECT_GT(softening, 0.97);
 }
 
 }  // namespace

@@ -14,6 +14,13 @@ double J2Viscoplastic::flow_stress(double eqps, double eqps_rate) const {
   return g * std::pow(1 + eqps_rate / reference_plastic_strain_rate, 1 / rate_exponent);
 }
 
+double J2Viscoplastic::thermal_factor(double temperature_rise) const {
+  if (!thermal.enabled) return 1;
+  const double homologous =
+      std::clamp(temperature_rise / (thermal.melting_temperature - thermal.reference_temperature), 0.0, 1.0);
+  return 1 - std::pow(homologous, thermal.exponent);
+}
+
 Mat3 J2Viscoplastic::update(const Mat3& tau, const Mat3& d, double dt, History& history) const {
   if (!(dt > 0)) return tau;
   static const double root_two_thirds = std::sqrt(2.0 / 3.0);
@@ -24,8 +31,9 @@ Mat3 J2Viscoplastic::update(const Mat3& tau, const Mat3& d, double dt, History& 
   const Mat3 S_trial = S_old + 2 * shear * deviatoric_increment;  // eq 49
   const double trial_norm = S_trial.norm();
   const double eqps_old = history.equivalent_plastic_strain;
+  const double softening = thermal_factor(history.temperature_rise);
 
-  if (trial_norm <= root_two_thirds * flow_stress(eqps_old, 0)) {  // elastic: eq 50, first case
+  if (trial_norm <= root_two_thirds * softening * flow_stress(eqps_old, 0)) {  // elastic: eq 50, first case
     history.equivalent_plastic_strain_rate = 0;
     history.flow_stress = 0;
     return S_trial + pressure * Mat3::Identity();
@@ -34,14 +42,15 @@ Mat3 J2Viscoplastic::update(const Mat3& tau, const Mat3& d, double dt, History& 
   // Eq 60 projected on Q^tr: positive at Δλ = 0 (the trial is outside the static surface), and equal to
   // −√(2/3) G < 0 at Δλ = |S^tr|/(2μ), so the root is bracketed.
   const auto residual = [&](double dlambda) {
-    return trial_norm - 2 * shear * dlambda - root_two_thirds * flow_stress(eqps_old, root_two_thirds * dlambda / dt);
+    return trial_norm - 2 * shear * dlambda -
+           root_two_thirds * softening * flow_stress(eqps_old, root_two_thirds * dlambda / dt);
   };
   const double upper = trial_norm / (2 * shear);
   // A tolerance on Δλ of 1e-14 |S^tr|/(2μ) is a stress consistency error of 1e-14 |S^tr|.
   const RootResult root = brent_root(residual, 0.0, upper, residual(0.0), residual(upper), 1e-14 * upper);
   if (!root.converged) return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
   const double dlambda = root.x;
-  const double G = flow_stress(eqps_old, root_two_thirds * dlambda / dt);  // eq 61
+  const double G = softening * flow_stress(eqps_old, root_two_thirds * dlambda / dt);  // eq 61
   const Mat3 Q_new = S_trial / trial_norm;
   const Mat3 S_new = root_two_thirds * G * Q_new;  // eq 50, radial return
 
@@ -53,6 +62,9 @@ Mat3 J2Viscoplastic::update(const Mat3& tau, const Mat3& d, double dt, History& 
   history.equivalent_plastic_strain = eqps_old + eqps_increment;  // eq 56
   history.equivalent_plastic_strain_rate = eqps_increment / dt;
   history.flow_stress = G;
+  if (thermal.enabled)
+    history.temperature_rise +=
+        thermal.taylor_quinney * G * eqps_increment / (thermal.density * thermal.specific_heat);
   return S_new + pressure * Mat3::Identity();  // eq 51
 }
 

@@ -17,6 +17,15 @@
 // The yield surface of step n+1 is evaluated at εp_n (eq 37, backward implicit in the rate only).
 // Foster's 6061-T6 aluminium: E = 68.9 GPa, ν = 0.333, Y = 276 MPa, n = 13.5, m = 44, ε0 = 0.001,
 // ε̇0 = 1000 /s (§10). m = ∞ gives the rate-independent law.
+//
+// Optional adiabatic thermal softening (not in Foster et al., who follow Warren & Tabbara in dropping the
+// temperature of Camacho & Ortiz): the flow stress is multiplied by the Johnson–Cook thermal factor
+//   Θ(T) = 1 − T*^q,  T* = (T − T_r)/(T_m − T_r) clamped to [0, 1],
+// and the point heats by the plastic work it dissipates, with no conduction (an impact is over long before
+// heat diffuses a horizon: aluminium's diffusivity 7e-5 m²/s moves heat ~0.06 mm in 50 µs):
+//   ΔT_{n+1} = ΔT_n + β G_t Δεp / (ρ c)        (S : Δe^p = G_t Δεp for the radial return)
+// β the Taylor–Quinney coefficient. Θ uses T_n (explicit in temperature, as in explicit impact codes),
+// so the return mapping of a step is unchanged apart from the constant factor.
 #include "peridot/correspondence/constitutive.hpp"
 
 namespace peridot::correspondence {
@@ -30,14 +39,28 @@ struct J2Viscoplastic {
   double reference_plastic_strain = 1;       ///< ε0 (-)
   double reference_plastic_strain_rate = 1;  ///< ε̇0 (1/s)
 
+  /// Adiabatic heating and Johnson–Cook thermal softening; off when `enabled` is false.
+  struct ThermalSoftening {
+    bool enabled = false;
+    double density = 0;                 ///< ρ (kg/m³)
+    double specific_heat = 0;           ///< c (J/(kg K))
+    double taylor_quinney = 0.9;        ///< β (-): share of the plastic work that heats
+    double reference_temperature = 0;   ///< T_r (K): the initial temperature, Θ = 1 there
+    double melting_temperature = 0;     ///< T_m (K): Θ = 0 there
+    double exponent = 1;                ///< q (-)
+  } thermal;
+
   struct History {
     double equivalent_plastic_strain = 0;       ///< εp (-)
     double equivalent_plastic_strain_rate = 0;  ///< ε̇p of the last step (1/s)
     double flow_stress = 0;                     ///< G_t of the last plastic step, 0 if elastic (Pa)
+    double temperature_rise = 0;                ///< T − T_r (K), adiabatic; 0 without thermal softening
   };
 
-  /// G(εp, ε̇p) (Pa), eqs 58–59.
+  /// G(εp, ε̇p) (Pa), eqs 58–59, without the thermal factor.
   double flow_stress(double eqps, double eqps_rate) const;
+  /// Θ(T_r + ΔT) (-): 1 without thermal softening.
+  double thermal_factor(double temperature_rise) const;
 
   Mat3 update(const Mat3& tau, const Mat3& d, double dt, History& history) const;
   double bulk_modulus() const { return bulk; }

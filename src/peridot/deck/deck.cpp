@@ -177,7 +177,7 @@ struct Parser {
     m.constitutive_law = j2 ? ConstitutiveLawKind::j2_viscoplastic : ConstitutiveLawKind::hypoelastic;
     m.hourglass_coefficient = r["hourglass_coefficient"].number;
     static constexpr std::string_view j2_keys[] = {"yield_stress", "hardening_exponent", "reference_plastic_strain",
-                                                   "rate_exponent", "reference_strain_rate"};
+                                                   "rate_exponent", "reference_strain_rate", "thermal_softening"};
     if (!j2) {
       for (std::string_view key : j2_keys)
         if (r.given(key))
@@ -201,6 +201,24 @@ struct Parser {
     m.reference_plastic_strain = r.optional_number("reference_plastic_strain").value_or(1);
     m.rate_exponent = r.optional_number("rate_exponent").value_or(std::numeric_limits<double>::infinity());
     m.reference_strain_rate = r.optional_number("reference_strain_rate").value_or(1);
+    if (r.given("thermal_softening")) m.thermal_softening = parse_thermal_softening(r["thermal_softening"], r.path_of("thermal_softening"));
+  }
+
+  ThermalSofteningSpec parse_thermal_softening(const Value& v, const std::string& path) {
+    MapReader r(ctx, v.node, v.key_pos, path, thermal_softening_keys());
+    ThermalSofteningSpec t;
+    t.enabled = true;
+    t.specific_heat = r.optional_number("specific_heat").value_or(0);
+    t.reference_temperature = r.optional_number("reference_temperature").value_or(0);
+    t.melting_temperature = r.optional_number("melting_temperature").value_or(0);
+    t.exponent = r.optional_number("exponent").value_or(1);
+    t.taylor_quinney = r["taylor_quinney_coefficient"].number;
+    if (r.present("reference_temperature") && r.present("melting_temperature") &&
+        !(t.melting_temperature > t.reference_temperature))
+      ctx.error(r["melting_temperature"].pos, r.path_of("melting_temperature"),
+                fmt::format("melting_temperature ({:g} K) must be above reference_temperature ({:g} K)",
+                            t.melting_temperature, t.reference_temperature));
+    return t;
   }
 
   DamageSpec parse_damage(const Value& v, const std::string& path) {

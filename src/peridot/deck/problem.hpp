@@ -16,6 +16,17 @@
 namespace peridot {
 
 enum class ModelKind { pmb, lps, lps_plastic, lps_viscoelastic, correspondence };
+/// Adiabatic heating with Johnson–Cook thermal softening of a j2_viscoplastic law (j2_viscoplastic.hpp):
+/// the flow stress is multiplied by 1 − T*^q, T* = (T − T_r)/(T_m − T_r), and T rises by β ΔW_p/(ρ c).
+struct ThermalSofteningSpec {
+  bool enabled = false;
+  double specific_heat = 0;          ///< c (J/(kg K))
+  double reference_temperature = 0;  ///< T_r (K), the initial temperature
+  double melting_temperature = 0;    ///< T_m (K)
+  double exponent = 1;               ///< q (-)
+  double taylor_quinney = 0.9;       ///< β (-)
+};
+
 /// The constitutive law of a correspondence material (correspondence/hypoelastic.hpp, j2_viscoplastic.hpp).
 enum class ConstitutiveLawKind { hypoelastic, j2_viscoplastic };
 enum class InfluenceKind { constant, inverse_distance, gaussian };  ///< ω = 1, δ/ξ, exp(−ξ²/δ²)
@@ -60,6 +71,7 @@ struct MaterialSpec {
   double reference_plastic_strain = 1;                                 ///< ε0 (-)
   double rate_exponent = std::numeric_limits<double>::infinity();       ///< m (-); ∞ = rate independent
   double reference_strain_rate = 1;                                    ///< ε̇0 (1/s)
+  ThermalSofteningSpec thermal_softening;                              ///< j2_viscoplastic only
   double hourglass_coefficient = 0;                                    ///< C_HG (-)
 };
 

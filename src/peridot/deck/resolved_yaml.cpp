@@ -122,6 +122,16 @@ void emit_model_parameters(YAML::Emitter& out, const MaterialSpec& m) {
         key("rate_exponent", m.rate_exponent);
         key("reference_strain_rate", m.reference_strain_rate);
       }
+      if (m.thermal_softening.enabled) {
+        const ThermalSofteningSpec& t = m.thermal_softening;
+        out << YAML::Key << "thermal_softening" << YAML::Value << YAML::BeginMap;
+        key("specific_heat", t.specific_heat);
+        key("reference_temperature", t.reference_temperature);
+        key("melting_temperature", t.melting_temperature);
+        key("exponent", t.exponent);
+        key("taylor_quinney_coefficient", t.taylor_quinney);
+        out << YAML::EndMap;
+      }
       return;
     }
   }

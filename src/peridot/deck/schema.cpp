@@ -56,6 +56,8 @@ const std::vector<UnitInfo>& unit_table() {
       {Unit::velocity, "velocity", {{"m/s", 1.0}, {"mm/s", 1e-3}, {"km/s", 1e3}}},
       {Unit::force_density, "force density", {{"N/m^3", 1.0}, {"kN/m^3", 1e3}, {"MN/m^3", 1e6}}},
       {Unit::rate, "rate", {{"1/s", 1.0}, {"1/ms", 1e3}, {"1/us", 1e6}}},
+      {Unit::temperature, "temperature", {{"K", 1.0}}},
+      {Unit::specific_heat, "specific heat", {{"J/(kg K)", 1.0}, {"J/kg/K", 1.0}, {"kJ/(kg K)", 1e3}}},
   };
   return table;
 }
@@ -208,6 +210,9 @@ std::vector<SectionSpec> make_sections() {
                  .choices = {"none", "extended", "horizon"}}}});
   s.push_back({"materials.<name>", "a material: a model from the registry and its parameters", common_material_keys()});
   s.push_back({"materials.<name>.damage", "bond breaking; omit for no damage", damage_keys()});
+  s.push_back({"materials.<name>.thermal_softening",
+               "adiabatic heating and Johnson–Cook thermal softening of constitutive_law: j2_viscoplastic; omit for none",
+               thermal_softening_keys()});
   s.push_back({"bodies.<name>", "a body: points filling a shape on the lattice, or read from a file",
                {{.key = "material", .type = VT::text, .description = "name of a material", .required = true},
                 {.key = "shape", .type = VT::mapping, .description = "a shape (see shape)", .required = true, .one_of = "source"},

@@ -12,7 +12,9 @@
 namespace peridot {
 
 /// Physical quantity of a number; each has an SI unit and a few accepted alternatives ("72 GPa").
-enum class Unit { none, length, time, pressure, density, energy_per_area, velocity, force_density, rate };
+enum class Unit {
+  none, length, time, pressure, density, energy_per_area, velocity, force_density, rate, temperature, specific_heat
+};
 
 enum class ValueType {
   number,         ///< a real, optionally followed by a unit of the key's quantity

@@ -108,6 +108,7 @@ MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const 
       p.reference_plastic_strain = spec.reference_plastic_strain;
       p.rate_exponent = spec.rate_exponent;
       p.reference_strain_rate = spec.reference_strain_rate;
+      p.thermal_softening = spec.thermal_softening;
       p.hourglass_coefficient = spec.hourglass_coefficient;
       break;
   }

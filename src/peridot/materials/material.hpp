@@ -43,6 +43,7 @@ struct MaterialParams {
   double reference_plastic_strain = 1;
   double rate_exponent = std::numeric_limits<double>::infinity();
   double reference_strain_rate = 1;
+  ThermalSofteningSpec thermal_softening;
   double hourglass_coefficient = 0;
   /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
   /// the Silling–Askari stable time step estimate for every model.

@@ -215,6 +215,10 @@ Foster, Silling & Chen (2010).
 - J2 law: flow stress G(εp, ε̇p) = Y (1 + εp/ε0)^(1/n) (1 + ε̇p/ε̇0)^(1/m) (58–59); trial S^tr = S_n + 2G dev(d)Δt
   (49); elastic when |S^tr| ≤ √(2/3) G(εp_n, 0); otherwise Δλ solves |S^tr| − 2GΔλ − √(2/3) G(εp_n, √(2/3)Δλ/Δt) = 0
   (60) and S = √(2/3) G S^tr/|S^tr| (50, 61); pressure p_{n+1} = p_n + K tr(d)Δt (52); εp from (56–57)
+- J2 with `thermal_softening` (not in Foster et al., who drop temperature): G is multiplied by the Johnson–Cook
+  factor Θ = 1 − T*^q, T* = (T_n − T_r)/(T_m − T_r) clamped to [0, 1], the temperature of the previous step;
+  adiabatic heating T_{n+1} = T_n + β G Δεp/(ρc) (no conduction: heat moves √(κt) ≈ 0.06 mm in 50 µs in
+  aluminium), T_0 = T_r; output `temperature` (K)
 - (23) σ = R τ Rᵀ; (24) P = det(F) σ F⁻ᵀ; (25) force state T⟨ξ⟩ = ω P K⁻¹ ξ; (4) f = Σ (T⟨ξ⟩ − T′⟨−ξ⟩) V
 - hourglass state T^hg⟨ξ⟩ = ω (c_hg/|ξ|) ((Y − Fξ)·n) n, n = Y/|Y|, c_hg = 18 C_HG K/(πδ⁴)
   (reference/algorithms.md §2a); C_HG is hourglass_coefficient
@@ -293,6 +297,9 @@ const std::vector<ModelInfo>& material_models() {
          .description = "m (-): G ∝ (1 + ε̇p/ε̇0)^(1/m); j2_viscoplastic; omit for rate independence"},
         {.key = "reference_strain_rate", .unit = Unit::rate, .range = positive,
          .description = "ε̇0 (1/s), with rate_exponent; j2_viscoplastic"},
+        {.key = "thermal_softening", .type = ValueType::mapping,
+         .description = "adiabatic heating and Johnson–Cook thermal softening (see materials.<name>.thermal_softening); "
+                        "j2_viscoplastic; omit for none"},
         {.key = "hourglass_coefficient", .default_yaml = "0.05", .range = non_negative,
          .description = "C_HG (-): hourglass bond stiffness 18 C_HG K/(πδ⁴); 0 = no control"}},
        correspondence_doc(), 3},
@@ -346,6 +353,21 @@ std::vector<KeySpec> damage_keys() {
        .required = true, .one_of = "criterion"},
       {.key = "fracture_energy", .unit = Unit::energy_per_area, .range = positive,
        .description = "G0 (J/m^2); s0 then follows from K and δ", .required = true, .one_of = "criterion"},
+  };
+}
+
+std::vector<KeySpec> thermal_softening_keys() {
+  return {
+      {.key = "specific_heat", .unit = Unit::specific_heat, .range = positive,
+       .description = "c (J/(kg K)), specific heat at constant pressure", .required = true},
+      {.key = "reference_temperature", .unit = Unit::temperature, .range = positive,
+       .description = "T_r (K): the initial temperature, where the thermal factor is 1", .required = true},
+      {.key = "melting_temperature", .unit = Unit::temperature, .range = positive,
+       .description = "T_m (K): the thermal factor is 0 there; above reference_temperature", .required = true},
+      {.key = "exponent", .range = positive, .description = "q (-): thermal factor 1 − T*^q, Johnson–Cook's m",
+       .required = true},
+      {.key = "taylor_quinney_coefficient", .default_yaml = "0.9", .range = {0, 1, false, false},
+       .description = "β (-): share of the plastic work that heats the point"},
   };
 }
 

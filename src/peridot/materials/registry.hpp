@@ -46,6 +46,8 @@ std::vector<KeySpec> common_material_keys();
 std::vector<KeySpec> material_keys(const ModelInfo& model);
 /// Keys of a material's damage section.
 std::vector<KeySpec> damage_keys();
+/// Keys of a j2_viscoplastic material's thermal_softening section.
+std::vector<KeySpec> thermal_softening_keys();
 /// How critical-stretch damage works, for the model pages (Markdown; the same for every model).
 std::string_view damage_doc();
 

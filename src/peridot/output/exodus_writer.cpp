@@ -68,6 +68,7 @@ const std::vector<std::string>& ExodusWriter::optional_fields() {
     std::vector<std::string> all = {"equivalent_plastic_strain", "dissipation", "fragment"};
     const auto& correspondence = correspondence_output_names();
     all.insert(all.end(), correspondence.begin(), correspondence.end());
+    all.push_back("temperature");  // with thermal_softening (State::point_outputs)
     return all;
   }();
   return names;

@@ -20,6 +20,7 @@
 //      fragment                                  (State::fragment: the fragment label, damage/fragments.hpp)
 //      deformation_gradient_xx … von_mises_stress … green_lagrange_strain_zx
 //                                                (State::point_outputs, correspondence_output_names())
+//      temperature                               (State::point_outputs: K, with thermal_softening)
 //    force_density is State::force (internal force density). volume is constant, yet written every frame:
 //    an Exodus nodal variable has a value per time step, and a reader looking at frame k of a variable
 //    written only at frame 1 would see fill values. The cost is one double per point per frame.

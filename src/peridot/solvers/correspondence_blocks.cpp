@@ -36,6 +36,12 @@ AnyBlock make_block(const MaterialParams& p, BlockRange range) {
   law.rate_exponent = p.rate_exponent;
   law.reference_plastic_strain = p.reference_plastic_strain;
   law.reference_plastic_strain_rate = p.reference_strain_rate;
+  if (p.thermal_softening.enabled) {
+    const ThermalSofteningSpec& t = p.thermal_softening;
+    law.thermal = {.enabled = true, .density = p.density, .specific_heat = t.specific_heat,
+                   .taylor_quinney = t.taylor_quinney, .reference_temperature = t.reference_temperature,
+                   .melting_temperature = t.melting_temperature, .exponent = t.exponent};
+  }
   return CorrespondenceBlock<J2Viscoplastic>(law, range);
 }
 
@@ -201,6 +207,20 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
           state.history.plastic_strain[i] = block.history[i - range.begin].equivalent_plastic_strain;
       }
     }, any);
+  if (!any_thermal_softening(*m.model)) return;
+  // T of the points with thermal softening, 0 elsewhere (they have no temperature).
+  std::vector<double>& temperature = state.point_outputs["temperature"];
+  temperature.assign(n, 0.0);
+  for (const AnyBlock& any : m.blocks)
+    if (const auto* block = std::get_if<CorrespondenceBlock<J2Viscoplastic>>(&any); block && block->law.thermal.enabled)
+      for (std::size_t i = block->range.begin; i < block->range.end; ++i)
+        temperature[i] = block->law.thermal.reference_temperature + block->history[i - block->range.begin].temperature_rise;
+}
+
+bool any_thermal_softening(const ModelContext& model) {
+  for (const MaterialParams& p : model.params)
+    if (p.model == ModelKind::correspondence && p.thermal_softening.enabled) return true;
+  return false;
 }
 
 }  // namespace peridot

@@ -43,7 +43,8 @@ class CorrespondenceBlocks {
   /// Work done on each point by the hourglass forces since t = 0, with the sign of a stored energy (J):
   /// W_hg,i = −Σ_steps ½(f_hg^n + f_hg^{n+1})·(u^{n+1} − u^n) V_i (Simulation sums it for the history).
   const std::vector<double>& point_hourglass_work() const;
-  /// Fills state.point_outputs (names: output_field_names()) and history.plastic_strain (ε̄p of J2).
+  /// Fills state.point_outputs (names: output_field_names(), and `temperature` (K) when
+  /// any_thermal_softening) and history.plastic_strain (ε̄p of J2).
   void write_point_outputs(State& state) const;
 
   /// The Exodus fields a problem with correspondence blocks writes, beyond the standard ones.
@@ -53,5 +54,8 @@ class CorrespondenceBlocks {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Whether a correspondence material of the problem has thermal_softening (then `temperature` is output).
+bool any_thermal_softening(const ModelContext& model);
 
 }  // namespace peridot

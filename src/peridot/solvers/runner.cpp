@@ -50,6 +50,7 @@ std::vector<std::string> optional_exodus_fields(const Simulation& sim) {
     fields = {"equivalent_plastic_strain", "dissipation"};
   if (sim.has_correspondence())
     for (const std::string& name : CorrespondenceBlocks::output_field_names()) fields.push_back(name);
+  if (sim.has_correspondence() && any_thermal_softening(sim.model())) fields.push_back("temperature");
   if (sim.model().any_damage()) fields.push_back("fragment");
   return fields;
 }
