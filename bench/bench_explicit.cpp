@@ -9,6 +9,10 @@
 //                  [--dump final.txt]
 //   --model lps_plastic [--yield-stress 1e6]   (a small σ_y makes every point flow: the costly case)
 //   --model lps_viscoelastic                   (λ_i = 0.5, τ_b = 10 µs)
+//   --model correspondence [--law j2|hypoelastic] [--yield-stress 1e4]
+//                                              (Foster's J2 law, n = 13.5, m = 44, with the block's E and ν;
+//                                              C_HG = 0.05; σ_y = 1e4 Pa makes the points flow at the default
+//                                              v0: a Brent solve per point and step)
 //   --lammps-failure-order   a bond failing in a step still carries that step's force, as in LAMMPS PERI
 //   mpirun -np R bench_explicit …   distributed: rates per core over all R × threads cores, the slowest
 //                                   rank's loop time, and its communication (halo exchanges and the
@@ -41,7 +45,8 @@ struct Options {
   double dt = 0;  // 0: 0.8 × stable
   double v0 = 1e-3;
   double critical_stretch = 0;  // 0: no damage
-  double yield_stress = 250e6;  // lps_plastic
+  double yield_stress = 250e6;  // lps_plastic, correspondence j2
+  std::string law = "j2";       // correspondence
   int threads = 1;
   bool lammps_failure_order = false;
   std::string dump;
@@ -60,6 +65,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--v0") o.v0 = std::stod(next());
     else if (a == "--critical-stretch") o.critical_stretch = std::stod(next());
     else if (a == "--yield-stress") o.yield_stress = std::stod(next());
+    else if (a == "--law") o.law = next();
     else if (a == "--lammps-failure-order") o.lammps_failure_order = true;
     else if (a == "--threads") o.threads = std::stoi(next());
     else if (a == "--dump") o.dump = next();
@@ -87,7 +93,16 @@ Problem benchmark_problem(const Options& o) {
   m.model = o.model == "lps"                ? ModelKind::lps
             : o.model == "lps_plastic"      ? ModelKind::lps_plastic
             : o.model == "lps_viscoelastic" ? ModelKind::lps_viscoelastic
+            : o.model == "correspondence"   ? ModelKind::correspondence
                                             : ModelKind::pmb;
+  if (m.model == ModelKind::correspondence) {
+    m.constitutive_law = o.law == "hypoelastic" ? ConstitutiveLawKind::hypoelastic : ConstitutiveLawKind::j2_viscoplastic;
+    m.hardening_exponent = 13.5;
+    m.reference_plastic_strain = 0.001;
+    m.rate_exponent = 44;
+    m.reference_strain_rate = 1000;
+    m.hourglass_coefficient = 0.05;
+  }
   // LAMMPS peri/lps weighs bonds by 1/|ξ| (the scale of ω cancels in LPS, so δ/|ξ| is the same model).
   m.influence = m.model == ModelKind::pmb ? InfluenceKind::constant : InfluenceKind::inverse_distance;
   m.yield_stress = o.yield_stress;
@@ -184,10 +199,11 @@ int main(int argc, char** argv) {
   const double cores = static_cast<double>(o.threads) * comm.size();
   const double updates_per_s_core = bonds * o.steps / run_s / cores;
   // Bond storage: neighbour index (4 B), broken flag (1 B), CSR offsets (8 B per point); inelastic models add
-  // 8 B per history array and 4 B of partner-bond index.
+  // 8 B per history array and 4 B of partner-bond index; correspondence adds its bond weight ω × partial
+  // volume (8 B) and the partner-bond index (4 B) through which the force reads j's weight of the pair.
   const double neighbor_bytes = 4, state_bytes = 1, offset_bytes = 8 * (points + 1) / bonds;
   const int history_arrays = sim.model().bond_history_arrays();
-  const double history_bytes = history_arrays > 0 ? 8.0 * history_arrays + 4 : 0.0;
+  const double history_bytes = history_arrays > 0 ? 8.0 * history_arrays + 4 : sim.has_correspondence() ? 12.0 : 0.0;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double rss_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
@@ -204,7 +220,7 @@ int main(int argc, char** argv) {
       "\"ranks\": %d, \"threads\": %d, \"dt\": %.17g, \"setup_s\": %.4f, \"loop_s\": %.4f, \"loop_cpu_s\": %.4f, "
       "\"bond_updates_per_s_per_core\": %.4g, \"bond_updates_per_cpu_s\": %.4g, "
       "\"bytes_per_bond\": %.3f, \"bytes_per_bond_breakdown\": {\"neighbor_index\": %.0f, \"broken_flag\": %.0f, "
-      "\"csr_offsets\": %.3f, \"history_and_partner_index\": %.0f}, \"peak_rss_mib\": %.1f, "
+      "\"csr_offsets\": %.3f, \"history_weight_and_partner_index\": %.0f}, \"peak_rss_mib\": %.1f, "
       "\"communication\": {\"share_of_loop\": %.4f, \"share_of_loop_least_waiting_rank\": %.4f, \"seconds\": %.4f, "
       "\"u_exchange_s\": %.3g, \"messages_per_step_per_rank\": %.1f, "
       "\"bytes_per_step_per_rank\": %.0f, \"ghosts_per_rank\": %.0f, \"peak_rss_mib_all_ranks\": %.0f}, "

@@ -118,11 +118,12 @@ SETS = {
     "short": [("short", 8, 3.015, 5, 244, 60)],
     "ld5": [(f"ld5_{v}", 20, 3.015, 5, v, 80) for v in (170, 244, 295)],
     "other": [("ld2_240", 20, 3.015, 2, 240, 60), ("ld10_256", 20, 3.015, 10, 256, 140)],
-    # 50 µs: the rod has left the anvil by 47 µs at 244 m/s (its kinetic energy is then 0.6 % of the initial)
-    "convergence": [("conv_n20_d3", 20, 3.015, 5, 244, 50), ("conv_n20_d4", 20, 4.015, 5, 244, 50),
-                    ("conv_n30_d3", 30, 3.015, 5, 244, 50)],
-    # Df/D0 of the fastest L0/D0 = 5 shot at 20, 30 and 40 points across (40: about 1 h on one core)
-    "resolution": [(f"res_n{n}_295", n, 3.015, 5, 295, 50) for n in (20, 30, 40)],
+    # The fastest L0/D0 = 5 shot (the largest strains): 20 and 30 points across at δ = 3.015Δx, 20 across at
+    # δ = 4.015Δx. 50 µs: the rod has left the anvil (Df/D0 and Lf/L0 at 50 and 80 µs agree to 2e-4).
+    "convergence": [("conv_n20_d3", 20, 3.015, 5, 295, 50), ("conv_n20_d4", 20, 4.015, 5, 295, 50),
+                    ("conv_n30_d3", 30, 3.015, 5, 295, 50)],
+    # 40 points across (252 800 points, 2 356 steps): about 70 min on one core; not part of "all"
+    "convergence40": [("conv_n40_d3", 40, 3.015, 5, 295, 50)],
     # sensitivity of Df/D0 to the hourglass coefficient (a study, one shot; not a per-shot setting)
     "hourglass": [(f"hg{c}_n20_d3", 20, 3.015, 5, 244, 50, c) for c in (0.01, 0.02, 0.05)],
 }
@@ -142,6 +143,8 @@ def main():
     p.add_argument("--data", default=os.path.join(HERE, "..", "..", "..", "shared", "reference",
                                                   "taylor_6061T6_house1995.csv"))
     p.add_argument("--plot", help="write a figure of Lf/L0 and Df/D0 against the experiment")
+    p.add_argument("--profile", help="write a figure of the final profile of one shot of the set (see --profile-shot)")
+    p.add_argument("--profile-shot", default="ld5_244", help="the shot drawn by --profile (default ld5_244)")
     p.add_argument("--reuse", action="store_true", help="measure existing runs instead of running again")
     p.add_argument("--only", help="comma-separated shot names of the set to run (default: all of them)")
     p.add_argument("--check-short", action="store_true",
@@ -188,7 +191,14 @@ def main():
                     f"{r['face_cell']:.5f},{r['face_centres']:.5f},{r['widest_centres']:.5f},{r['eqps']:.4f},{r['balance']:.5f},"
                     f"{r['hourglass']:.5f},{exp['lf'] if exp else ''},{exp['df'] if exp else ''}\n")
     if a.plot:
-        plot(results, shots, a.plot)
+        plot(results, shots, a.plot, not a.no_thermal)
+    if a.profile:
+        r = next((r for r in results if r["name"] == a.profile_shot), None)
+        if r is None:
+            print(f"--profile: shot {a.profile_shot} is not in this run")
+            return 2
+        plot_profile(os.path.join(os.path.abspath(a.out), r["name"], "output", "results.e"), D0 / r["across"], r,
+                     a.profile)
     if a.check_short:
         r = results[0]
         ok = 0.83 <= r["lf"] <= 0.89 and abs(r["balance"]) < 0.01
@@ -198,7 +208,7 @@ def main():
     return 0
 
 
-def plot(results, shots, path):
+def plot(results, shots, path, thermal=True):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -216,8 +226,64 @@ def plot(results, shots, path):
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
-    axes[0].set_title(f"Peridot (x: 20 across, δ = 3Δx, C_HG = {results[0]['chg']:g}; +: convergence runs)", fontsize=9)
+    heating = "thermal softening" if thermal else "no heating"
+    axes[0].set_title(f"Peridot (x: 20 across, δ = 3Δx, C_HG = {results[0]['chg']:g}, {heating}; +: convergence runs)",
+                      fontsize=8)
     axes[1].set_title("Df: area-equivalent diameter of the face layer", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
+def plot_profile(exodus_path, spacing, result, path):
+    """The final rod beside its initial outline: the row of points at y = Δx/2 (reference), coloured by εp,
+    and the outer radius of every reference layer against the deformed height, with the experiment's Lf and
+    Df marked."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    ds = netCDF4.Dataset(exodus_path, "r")
+    ds.set_auto_mask(False)
+    names = [row.tobytes().split(b"\0")[0].decode().strip() for row in np.asarray(ds.variables["name_nod_var"][:])]
+    x = np.array([ds.variables["coord" + a][:] for a in "xyz"])
+    last = ds.dimensions["time_step"].size - 1
+    y = x + np.array([nodal(ds, names, "displacement_" + a, last) for a in "xyz"])
+    eqps = nodal(ds, names, "equivalent_plastic_strain", last)
+    ds.close()
+    mm = 1e3
+    fig, (side, outline) = plt.subplots(1, 2, figsize=(10, 5.5), gridspec_kw={"width_ratios": [1.2, 1]})
+    slab = np.abs(x[1] - 0.5 * spacing) < 0.25 * spacing  # the lattice row next to the axis plane y = 0
+    sc = side.scatter(y[0][slab] * mm, y[2][slab] * mm, c=eqps[slab], s=6, cmap="viridis")
+    fig.colorbar(sc, ax=side, label="equivalent plastic strain")
+    L0, R0 = x[2].max() + 0.5 * spacing, np.hypot(x[0], x[1]).max() + 0.5 * spacing
+    side.plot(np.array([-R0, -R0, R0, R0]) * mm, np.array([L0, 0, 0, L0]) * mm, "k--", lw=0.8, label="initial rod")
+    side.set_aspect("equal")
+    side.set_xlabel("x (mm)")
+    side.set_ylabel("z (mm), anvil at z = 0")
+    side.legend(fontsize=8, loc="upper right")
+    side.set_title(f"L0/D0 = {result['ld']:g}, {result['speed']:g} m/s: the points at y = Δx/2, last frame", fontsize=9)
+    layer = np.rint(x[2] / spacing - 0.5).astype(int)
+    heights, radii = [], []
+    for k in np.unique(layer):
+        m = layer == k
+        r0 = np.hypot(x[0][m], x[1][m])
+        outer = r0 >= r0.max() - 1e-12  # the outermost reference ring of the layer
+        heights.append(y[2][m].mean())
+        radii.append(np.hypot(y[0][m], y[1][m])[outer].mean() + 0.5 * spacing)
+    outline.plot(np.array(radii) * mm, np.array(heights) * mm, "C1-", label="Peridot: outermost ring + Δx/2")
+    outline.plot([R0 * mm, R0 * mm], [0, L0 * mm], "k--", lw=0.8, label="initial radius")
+    exp = result.get("exp")
+    if exp:
+        outline.axhline(exp["lf"] * L0 * mm, color="C0", lw=0.8, label=f"experiment Lf/L0 = {exp['lf']:.3f}")
+        outline.plot([exp["df"] * D0 / 2 * mm], [0], "o", color="C0", mfc="none", ms=9,
+                     label=f"experiment Df/D0 = {exp['df']:.3f}")
+    outline.plot([result["df"] * D0 / 2 * mm], [0], "x", color="C1", ms=9,
+                 label=f"Peridot Df/D0 = {result['df']:.3f} (face area)")
+    outline.set_xlabel("radius (mm)")
+    outline.set_ylabel("deformed height (mm)")
+    outline.set_xlim(0, None)
+    outline.grid(alpha=0.3)
+    outline.legend(fontsize=7)
+    outline.set_title(f"Lf/L0 = {result['lf']:.4f}; outer radius per layer", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
 
