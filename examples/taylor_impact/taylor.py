@@ -122,6 +122,9 @@ SETS = {
     # δ = 4.015Δx. 50 µs: the rod has left the anvil (Df/D0 and Lf/L0 at 50 and 80 µs agree to 2e-4).
     "convergence": [("conv_n20_d3", 20, 3.015, 5, 295, 50), ("conv_n20_d4", 20, 4.015, 5, 295, 50),
                     ("conv_n30_d3", 30, 3.015, 5, 295, 50)],
+    # the L0/D0 = 5 shots at 30 points across, to 50 µs (about 25 min each on one core); not part of "all"
+    "ld5_n30": [("ld5_n30_170", 30, 3.015, 5, 170, 50), ("ld5_n30_244", 30, 3.015, 5, 244, 50),
+                ("conv_n30_d3", 30, 3.015, 5, 295, 50)],
     # 40 points across (252 800 points, 2 356 steps): about 70 min on one core; not part of "all"
     "convergence40": [("conv_n40_d3", 40, 3.015, 5, 295, 50)],
     # sensitivity of Df/D0 to the hourglass coefficient (a study, one shot; not a per-shot setting)

@@ -201,7 +201,8 @@ struct Parser {
     m.reference_plastic_strain = r.optional_number("reference_plastic_strain").value_or(1);
     m.rate_exponent = r.optional_number("rate_exponent").value_or(std::numeric_limits<double>::infinity());
     m.reference_strain_rate = r.optional_number("reference_strain_rate").value_or(1);
-    if (r.given("thermal_softening")) m.thermal_softening = parse_thermal_softening(r["thermal_softening"], r.path_of("thermal_softening"));
+    if (r.given("thermal_softening"))
+      m.thermal_softening = parse_thermal_softening(r["thermal_softening"], r.path_of("thermal_softening"));
   }
 
   ThermalSofteningSpec parse_thermal_softening(const Value& v, const std::string& path) {

@@ -211,10 +211,13 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
   // T of the points with thermal softening, 0 elsewhere (they have no temperature).
   std::vector<double>& temperature = state.point_outputs["temperature"];
   temperature.assign(n, 0.0);
-  for (const AnyBlock& any : m.blocks)
-    if (const auto* block = std::get_if<CorrespondenceBlock<J2Viscoplastic>>(&any); block && block->law.thermal.enabled)
-      for (std::size_t i = block->range.begin; i < block->range.end; ++i)
-        temperature[i] = block->law.thermal.reference_temperature + block->history[i - block->range.begin].temperature_rise;
+  for (const AnyBlock& any : m.blocks) {
+    const auto* block = std::get_if<CorrespondenceBlock<J2Viscoplastic>>(&any);
+    if (!block || !block->law.thermal.enabled) continue;
+    const std::size_t begin = block->range.begin;
+    for (std::size_t i = begin; i < block->range.end; ++i)
+      temperature[i] = block->law.thermal.reference_temperature + block->history[i - begin].temperature_rise;
+  }
 }
 
 bool any_thermal_softening(const ModelContext& model) {
