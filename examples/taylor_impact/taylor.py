@@ -55,9 +55,8 @@ def nodal(ds, names, name, step):
     return np.array(ds.variables[f"vals_nod_var{k + 1}"][step, :])
 
 
-def measure(exodus_path, spacing):
-    """Lf/L0; Df/D0 three ways (the area-equivalent diameter of the face layer, the reported one; the outermost
-    deformed cell of the face layer; outermost centres + Δx, face layer and widest section); the largest εp."""
+def last_frame(exodus_path, with_deformation_gradient=False):
+    """Reference positions x, deformed positions y and εp of the last frame (and F, 3 × 3 × points, if asked)."""
     ds = netCDF4.Dataset(exodus_path, "r")
     ds.set_auto_mask(False)
     # A name ends at its first NUL; Exodus leaves the rest of the row unwritten (netCDF no-fill mode), so it
@@ -66,9 +65,17 @@ def measure(exodus_path, spacing):
     x = np.array([ds.variables["coord" + a][:] for a in "xyz"])
     last = ds.dimensions["time_step"].size - 1
     y = x + np.array([nodal(ds, names, "displacement_" + a, last) for a in "xyz"])
-    F = np.array([[nodal(ds, names, f"deformation_gradient_{a}{b}", last) for b in "xyz"] for a in "xyz"])
     eqps = nodal(ds, names, "equivalent_plastic_strain", last)
+    F = (np.array([[nodal(ds, names, f"deformation_gradient_{a}{b}", last) for b in "xyz"] for a in "xyz"])
+         if with_deformation_gradient else None)
     ds.close()
+    return x, y, eqps, F
+
+
+def measure(exodus_path, spacing):
+    """Lf/L0; Df/D0 three ways (the area-equivalent diameter of the face layer, the reported one; the outermost
+    deformed cell of the face layer; outermost centres + Δx, face layer and widest section); the largest εp."""
+    x, y, eqps, F = last_frame(exodus_path, with_deformation_gradient=True)
     first_layer = x[2] < x[2].min() + 0.5 * spacing
     length0 = x[2].max() - x[2].min() + spacing
     length = y[2].max() - y[2].min() + spacing
@@ -244,14 +251,7 @@ def plot_profile(exodus_path, spacing, result, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    ds = netCDF4.Dataset(exodus_path, "r")
-    ds.set_auto_mask(False)
-    names = [row.tobytes().split(b"\0")[0].decode().strip() for row in np.asarray(ds.variables["name_nod_var"][:])]
-    x = np.array([ds.variables["coord" + a][:] for a in "xyz"])
-    last = ds.dimensions["time_step"].size - 1
-    y = x + np.array([nodal(ds, names, "displacement_" + a, last) for a in "xyz"])
-    eqps = nodal(ds, names, "equivalent_plastic_strain", last)
-    ds.close()
+    x, y, eqps, _ = last_frame(exodus_path)
     mm = 1e3
     fig, (side, outline) = plt.subplots(1, 2, figsize=(10, 5.5), gridspec_kw={"width_ratios": [1.2, 1]})
     slab = np.abs(x[1] - 0.5 * spacing) < 0.25 * spacing  # the lattice row next to the axis plane y = 0

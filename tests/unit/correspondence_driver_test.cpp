@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <limits>
 #include <utility>
+#include <vector>
 
 #include "peridot/correspondence/bracketed_root.hpp"
 #include "peridot/correspondence/hypoelastic.hpp"
@@ -91,16 +92,20 @@ double plastic_strain(const MaterialPointSample<J2Viscoplastic>& s) {
   return std::log(s.deformation_gradient(0, 0)) - s.cauchy_stress(0, 0) / E_al;
 }
 
+/// Uniaxial stress at 1 /s true strain rate, with steps of Δt, up to the true strain `final_strain`.
+std::vector<MaterialPointSample<J2Viscoplastic>> uniaxial_to(const J2Viscoplastic& law, double final_strain,
+                                                             double dt) {
+  UniaxialStressOptions options;
+  options.true_strain_rate = 1.0;
+  options.dt = dt;
+  options.num_steps = static_cast<int>(std::lround(final_strain / dt));
+  return run_uniaxial_stress(law, options);
+}
+
 TEST(CorrDriver, J2RateIndependentLimitYieldsAtYAndFollowsHardeningLaw) {
   const J2Viscoplastic law = rate_independent_6061();
   const double Y = law.yield_stress;
-  auto run = [&](double dt) {
-    UniaxialStressOptions options;
-    options.true_strain_rate = 1.0;
-    options.dt = dt;
-    options.num_steps = static_cast<int>(std::lround(0.1 / dt));  // ε = 0.1
-    return run_uniaxial_stress(law, options);
-  };
+  auto run = [&](double dt) { return uniaxial_to(law, 0.1, dt); };
   const auto samples = run(1e-5);
   bool yielded = false;
   double worst_elastic = 0, worst_lagged = 0, worst_eqps = 0, worst_current = 0;
@@ -274,19 +279,14 @@ TEST(CorrDriver, RigidRotationAfterPlasticStretchRotatesStressOnly) {
 TEST(CorrDriver, J2AdiabaticThermalSofteningMatchesClosedForm) {
   J2Viscoplastic law = rate_independent_6061();
   law.hardening_exponent = std::numeric_limits<double>::infinity();
-  law.thermal = {.enabled = true, .density = 2700, .specific_heat = 100, .taylor_quinney = 0.9,
-                 .reference_temperature = 294, .melting_temperature = 925, .exponent = 1};
+  law.thermal = {.enabled = true, .specific_heat = 100, .reference_temperature = 294, .melting_temperature = 925,
+                 .exponent = 1, .taylor_quinney = 0.9};
+  law.density = 2700;
   const double Y = law.yield_stress;
   const double a = law.thermal.taylor_quinney * Y /
-                   (law.thermal.density * law.thermal.specific_heat *
+                   (law.density * law.thermal.specific_heat *
                     (law.thermal.melting_temperature - law.thermal.reference_temperature));
-  auto run = [&](double dt) {
-    UniaxialStressOptions options;
-    options.true_strain_rate = 1.0;
-    options.dt = dt;
-    options.num_steps = static_cast<int>(std::lround(0.2 / dt));  // ε = 0.2
-    return run_uniaxial_stress(law, options);
-  };
+  auto run = [&](double dt) { return uniaxial_to(law, 0.2, dt); };
   auto worst_error = [&](const auto& samples) {
     double worst_stress = 0, worst_heat = 0, plastic_work = 0;
     for (std::size_t k = 1; k < samples.size(); ++k) {
@@ -298,7 +298,7 @@ TEST(CorrDriver, J2AdiabaticThermalSofteningMatchesClosedForm) {
       const auto& before = samples[k - 1];
       plastic_work += 0.5 * (s.cauchy_stress(0, 0) + before.cauchy_stress(0, 0)) *
                       (eqps - before.history.equivalent_plastic_strain);
-      const double heat = law.thermal.taylor_quinney * plastic_work / (law.thermal.density * law.thermal.specific_heat);
+      const double heat = law.thermal.taylor_quinney * plastic_work / (law.density * law.thermal.specific_heat);
       worst_heat = std::max(worst_heat, std::abs(s.history.temperature_rise / heat - 1));
     }
     return std::pair{worst_stress, worst_heat};
@@ -327,8 +327,9 @@ TEST(CorrDriver, J2AdiabaticThermalSofteningMatchesClosedForm) {
 TEST(CorrDriver, J2WithoutThermalSofteningIsUnchangedAndStaysAtReferenceTemperature) {
   const J2Viscoplastic plain = J2Viscoplastic::aluminium_6061_t6();
   J2Viscoplastic hot = plain;
-  hot.thermal = {.enabled = true, .density = 2700, .specific_heat = 896, .taylor_quinney = 0.9,
-                 .reference_temperature = 294, .melting_temperature = 925, .exponent = 1.34};
+  hot.thermal = {.enabled = true, .specific_heat = 896, .reference_temperature = 294, .melting_temperature = 925,
+                 .exponent = 1.34, .taylor_quinney = 0.9};
+  hot.density = 2700;
   UniaxialStressOptions options;
   options.true_strain_rate = 8300;
   options.dt = 1e-8;

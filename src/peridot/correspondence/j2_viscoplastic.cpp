@@ -64,7 +64,7 @@ Mat3 J2Viscoplastic::update(const Mat3& tau, const Mat3& d, double dt, History& 
   history.flow_stress = G;
   if (thermal.enabled)
     history.temperature_rise +=
-        thermal.taylor_quinney * G * eqps_increment / (thermal.density * thermal.specific_heat);
+        thermal.taylor_quinney * G * eqps_increment / (density * thermal.specific_heat);
   return S_new + pressure * Mat3::Identity();  // eq 51
 }
 

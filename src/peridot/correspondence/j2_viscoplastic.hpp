@@ -39,16 +39,10 @@ struct J2Viscoplastic {
   double reference_plastic_strain = 1;       ///< ε0 (-)
   double reference_plastic_strain_rate = 1;  ///< ε̇0 (1/s)
 
-  /// Adiabatic heating and Johnson–Cook thermal softening; off when `enabled` is false.
-  struct ThermalSoftening {
-    bool enabled = false;
-    double density = 0;                 ///< ρ (kg/m³)
-    double specific_heat = 0;           ///< c (J/(kg K))
-    double taylor_quinney = 0.9;        ///< β (-): share of the plastic work that heats
-    double reference_temperature = 0;   ///< T_r (K): the initial temperature, Θ = 1 there
-    double melting_temperature = 0;     ///< T_m (K): Θ = 0 there
-    double exponent = 1;                ///< q (-)
-  } thermal;
+  /// Adiabatic heating and Johnson–Cook thermal softening (the deck's section, deck/problem.hpp); off when
+  /// `thermal.enabled` is false. The heating needs the density.
+  ThermalSofteningSpec thermal;
+  double density = 0;  ///< ρ (kg/m³)
 
   struct History {
     double equivalent_plastic_strain = 0;       ///< εp (-)

@@ -36,12 +36,8 @@ AnyBlock make_block(const MaterialParams& p, BlockRange range) {
   law.rate_exponent = p.rate_exponent;
   law.reference_plastic_strain = p.reference_plastic_strain;
   law.reference_plastic_strain_rate = p.reference_strain_rate;
-  if (p.thermal_softening.enabled) {
-    const ThermalSofteningSpec& t = p.thermal_softening;
-    law.thermal = {.enabled = true, .density = p.density, .specific_heat = t.specific_heat,
-                   .taylor_quinney = t.taylor_quinney, .reference_temperature = t.reference_temperature,
-                   .melting_temperature = t.melting_temperature, .exponent = t.exponent};
-  }
+  law.thermal = p.thermal_softening;
+  law.density = p.density;
   return CorrespondenceBlock<J2Viscoplastic>(law, range);
 }
 
