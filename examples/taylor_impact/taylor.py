@@ -134,6 +134,11 @@ SETS = {
                 ("conv_n30_d3", 30, 3.015, 5, 295, 50)],
     # 40 points across (252 800 points, 2 356 steps): about 70 min on one core; not part of "all"
     "convergence40": [("conv_n40_d3", 40, 3.015, 5, 295, 50)],
+    # every L0/D0 = 10 shot of House et al. (235, 256, 271 m/s) at 20 across; the rod leaves the anvil at about
+    # 95 µs (256 m/s), so 100 µs (Df/D0 and Lf/L0 at 100 and 140 µs: see README)
+    "ld10": [(f"ld10_{v}", 20, 3.015, 10, v, 100) for v in (235, 256, 271)],
+    # the 256 m/s L0/D0 = 10 shot at 30 across (214 800 points, 3 534 steps): about 75 min on one core
+    "ld10_n30": [("ld10_n30_256", 30, 3.015, 10, 256, 100)],
     # sensitivity of Df/D0 to the hourglass coefficient (a study, one shot; not a per-shot setting)
     "hourglass": [(f"hg{c}_n20_d3", 20, 3.015, 5, 244, 50, c) for c in (0.01, 0.02, 0.05)],
 }

@@ -12,23 +12,32 @@ double hourglass_stiffness(double coefficient, double bulk_modulus, double horiz
   return 18.0 * coefficient * bulk_modulus / (std::numbers::pi * std::pow(horizon, 4));
 }
 
-void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
-                                  const StressFields& s, const VectorField& u, VectorField& f) {
-  compute_correspondence_force(ctx, kin, s, u, f, BlockRange{0, ctx.disc->num_points()});
+double hourglass_damping(double coefficient, double density, double bulk_modulus, double horizon) {
+  return 18.0 * coefficient * std::sqrt(density * bulk_modulus) / (std::numbers::pi * std::pow(horizon, 3));
 }
 
 void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
-                                  const StressFields& s, const VectorField& u, VectorField& f, BlockRange range,
-                                  VectorField* hourglass_force) {
+                                  const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f) {
+  compute_correspondence_force(ctx, kin, s, u, v, f, BlockRange{0, ctx.disc->num_points()});
+}
+
+void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
+                                  const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f,
+                                  BlockRange range, VectorField* hourglass_force) {
   const Discretization& disc = *ctx.disc;
   const BondList& bonds = *ctx.bonds;
   const std::size_t n = disc.num_points();
   if (f.size() != n) f.resize(n);
   if (hourglass_force && hourglass_force->size() != n) hourglass_force->resize(n);
-  const bool hourglass =
-      std::any_of(ctx.hourglass_stiffness.begin(), ctx.hourglass_stiffness.end(), [](double c) { return c != 0; });
+  const auto any_nonzero = [](const std::vector<double>& c) {
+    return std::any_of(c.begin(), c.end(), [](double value) { return value != 0; });
+  };
+  const bool damping = any_nonzero(ctx.hourglass_damping);
+  const bool hourglass = damping || any_nonzero(ctx.hourglass_stiffness);
   const double* x = disc.x.data();
   const double* up = u.data();
+  const double* vp = v.data();
+  const double* Fdot = kin.deformation_gradient_rate.data();
   const double* A = s.force_tensor.data();
   const double* F = kin.deformation_gradient.data();
 #pragma omp parallel for schedule(static)
@@ -36,6 +45,7 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
     const double* Ai = A + 9 * i;
     const double* Fi = F + 9 * i;
     const double ci = hourglass ? ctx.hourglass_stiffness[disc.block[i]] : 0.0;
+    const double hi = damping ? ctx.hourglass_damping[disc.block[i]] : 0.0;
     double fi[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       if (bonds.broken[b]) continue;
@@ -64,7 +74,20 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
           zi_n += (y[r] - (Fi[3 * r] * xi[0] + Fi[3 * r + 1] * xi[1] + Fi[3 * r + 2] * xi[2])) * nr;
           zj_n += (y[r] - (Fj[3 * r] * xi[0] + Fj[3 * r + 1] * xi[1] + Fj[3 * r + 2] * xi[2])) * nr;
         }
-        const double scalar = (wi * ci * zi_n + wj * cj * zj_n) / (xi_length * y_length);
+        double scalar = wi * ci * zi_n + wj * cj * zj_n;
+        if (damping) {  // ż·n with ż = (v_j − v_i) − Ḟ ξ, the affine prediction of each end
+          const double hj = ctx.hourglass_damping[disc.block[j]];
+          const double* Fdot_i = Fdot + 9 * i;
+          const double* Fdot_j = Fdot + 9 * j;
+          double rate_i = 0, rate_j = 0;
+          for (int r = 0; r < 3; ++r) {
+            const double dv = vp[3 * j + r] - vp[3 * i + r], nr = y[r] / y_length;
+            rate_i += (dv - (Fdot_i[3 * r] * xi[0] + Fdot_i[3 * r + 1] * xi[1] + Fdot_i[3 * r + 2] * xi[2])) * nr;
+            rate_j += (dv - (Fdot_j[3 * r] * xi[0] + Fdot_j[3 * r + 1] * xi[1] + Fdot_j[3 * r + 2] * xi[2])) * nr;
+          }
+          scalar += wi * hi * rate_i + wj * hj * rate_j;
+        }
+        scalar /= xi_length * y_length;
         for (int r = 0; r < 3; ++r) fh[r] += scalar * y[r] * disc.volume[j];
       }
       const double vj = disc.volume[j];

@@ -26,6 +26,7 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
   const std::size_t nnz = bonds.num_bonds();
   ctx.bond_weight.resize(nnz + bonds.partner_slots);
   ctx.hourglass_stiffness.assign(blocks.size(), 0.0);
+  ctx.hourglass_damping.assign(blocks.size(), 0.0);
   const auto& x = disc.x;
   // ω⟨ξ⟩ of a bond from a point of block `own` to one of block `other`, with its partial-volume factor.
   auto weight = [&](const BlockGeometry& own, const BlockGeometry& other, double xi) {

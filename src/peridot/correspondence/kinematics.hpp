@@ -34,6 +34,8 @@ struct CorrespondenceContext {
   std::vector<double> bond_weight;
   /// Per block: hourglass bond stiffness c_hg (N/m⁶), 0 = no control (see force.hpp).
   std::vector<double> hourglass_stiffness;
+  /// Per block: hourglass bond dashpot c_hv (N s/m⁶), 0 = no damping (see force.hpp).
+  std::vector<double> hourglass_damping;
   /// K is refused when λ_min(K)/λ_max(K) falls below this (dimensionless). At 1e-8 the relative error
   /// that round-off in the bond sums can put into F through K⁻¹ stays near 1e-8.
   double min_reciprocal_condition = 1e-8;

@@ -176,6 +176,7 @@ struct Parser {
     const bool j2 = r["constitutive_law"].text == "j2_viscoplastic";
     m.constitutive_law = j2 ? ConstitutiveLawKind::j2_viscoplastic : ConstitutiveLawKind::hypoelastic;
     m.hourglass_coefficient = r["hourglass_coefficient"].number;
+    m.hourglass_viscosity = r["hourglass_viscosity"].number;
     static constexpr std::string_view j2_keys[] = {"yield_stress", "hardening_exponent", "reference_plastic_strain",
                                                    "rate_exponent", "reference_strain_rate", "thermal_softening"};
     if (!j2) {

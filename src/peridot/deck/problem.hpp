@@ -73,6 +73,7 @@ struct MaterialSpec {
   double reference_strain_rate = 1;                                    ///< ε̇0 (1/s)
   ThermalSofteningSpec thermal_softening;                              ///< j2_viscoplastic only
   double hourglass_coefficient = 0;                                    ///< C_HG (-)
+  double hourglass_viscosity = 0;                                      ///< C_HV (-)
 };
 
 /// Where a body's points come from: a shape filled on the lattice, or a text point file

@@ -112,6 +112,7 @@ void emit_model_parameters(YAML::Emitter& out, const MaterialSpec& m) {
       const bool j2 = m.constitutive_law == ConstitutiveLawKind::j2_viscoplastic;
       out << YAML::Key << "constitutive_law" << YAML::Value << (j2 ? "j2_viscoplastic" : "hypoelastic");
       key("hourglass_coefficient", m.hourglass_coefficient);
+      key("hourglass_viscosity", m.hourglass_viscosity);
       if (!j2) return;
       key("yield_stress", m.yield_stress);
       if (std::isfinite(m.hardening_exponent)) {

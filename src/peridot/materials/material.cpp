@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "peridot/correspondence/force.hpp"
 #include "peridot/materials/lps.hpp"
 #include "peridot/materials/lps_plastic.hpp"
 #include "peridot/materials/pmb.hpp"
@@ -110,6 +111,9 @@ MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const 
       p.reference_strain_rate = spec.reference_strain_rate;
       p.thermal_softening = spec.thermal_softening;
       p.hourglass_coefficient = spec.hourglass_coefficient;
+      p.hourglass_viscosity = spec.hourglass_viscosity;
+      p.stable_damping = correspondence::hourglass_damping(spec.hourglass_viscosity, spec.density,
+                                                           spec.elastic.bulk_modulus, horizon);
       break;
   }
   if (spec.model == ModelKind::lps_plastic) {

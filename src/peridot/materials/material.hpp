@@ -45,9 +45,13 @@ struct MaterialParams {
   double reference_strain_rate = 1;
   ThermalSofteningSpec thermal_softening;
   double hourglass_coefficient = 0;
+  double hourglass_viscosity = 0;  ///< C_HV (-), viscous hourglass damping
   /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
   /// the Silling–Askari stable time step estimate for every model.
   double stable_micromodulus = 0;
+  /// Bond dashpot of the same sums (N s/m⁶): the correspondence model's hourglass damping c_hv, 0 for every
+  /// other model. It shortens the stable time step (stable_time_step in solvers/internal_force.hpp).
+  double stable_damping = 0;
 };
 
 /// What a kernel may read besides its bond: per-point fields indexed by the point, per-bond history by

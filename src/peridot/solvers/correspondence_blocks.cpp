@@ -2,6 +2,7 @@
 // kinematics → stress → force sequence, and the energy and field outputs (correspondence_blocks.hpp).
 #include "peridot/solvers/correspondence_blocks.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <string>
@@ -80,6 +81,7 @@ struct CorrespondenceBlocks::Impl {
   VectorField hourglass_force, previous_hourglass_force, previous_u;
   bool have_previous = false;
   std::vector<double> hourglass_work;  ///< per point (J)
+  bool damped = false;                 ///< some block has hourglass damping: the gather reads partners' Ḟ
 };
 
 CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo)
@@ -103,7 +105,9 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   for (std::size_t b : m.block_index) {
     const MaterialParams& p = model.params[b];
     m.ctx.hourglass_stiffness[b] = hourglass_stiffness(p.hourglass_coefficient, p.elastic.bulk_modulus, p.horizon);
+    m.ctx.hourglass_damping[b] = p.stable_damping;  // hourglass_damping(C_HV, ρ, K, δ), materials/material.cpp
   }
+  m.damped = std::any_of(m.ctx.hourglass_damping.begin(), m.ctx.hourglass_damping.end(), [](double c) { return c != 0; });
   m.stress.resize(n);
   m.kin.shape_inverse = TensorField(n);
   m.kin.deformation_gradient.assign(n, Mat3::Identity());
@@ -133,11 +137,12 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
   if (m.halo) {  // what the gather reads of a ghost partner
     m.halo->exchange(m.stress.force_tensor.data(), 9);
     m.halo->exchange(m.kin.deformation_gradient.data(), 9);
+    if (m.damped) m.halo->exchange(m.kin.deformation_gradient_rate.data(), 9);
   }
   if (failure) std::rethrow_exception(failure);
   for (AnyBlock& any : m.blocks)
     std::visit([&](auto& block) {
-      compute_correspondence_force(m.ctx, m.kin, m.stress, u, f, block.range, &m.hourglass_force);
+      compute_correspondence_force(m.ctx, m.kin, m.stress, u, v, f, block.range, &m.hourglass_force);
     }, any);
 
   // Work of the hourglass forces over the step, trapezoidal like the kinetic energy of velocity Verlet.

@@ -264,7 +264,17 @@ double stable_time_step(const ModelContext& ctx) {
         const double xi = bond_length<Dim>(x, i, j);
         stiffness += neighbor_volume(ctx, i, j, xi) * p.stable_micromodulus / xi;
       }
-      if (stiffness > 0) dt = std::min(dt, std::sqrt(2 * p.density / stiffness));
+      if (stiffness == 0) continue;
+      double dt_i = std::sqrt(2 * p.density / stiffness);
+      // A dashpot c_v beside each spring c (correspondence hourglass damping): central differences with
+      // damping ratio ζ are stable for Δt ≤ (2/ω)(√(1 + ζ²) − ζ), ω = 2/dt_i the highest frequency of the
+      // sums above; the sums of c_v/ξ are c_v/c times those of c/ξ, so ζ = (c_v/c)/dt_i (assumes the
+      // highest mode is damped in full: conservative).
+      if (p.stable_damping > 0) {
+        const double zeta = p.stable_damping / p.stable_micromodulus / dt_i;
+        dt_i *= std::sqrt(1 + zeta * zeta) - zeta;
+      }
+      dt = std::min(dt, dt_i);
     }
   });
   return dt;
