@@ -33,9 +33,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 D0 = 7.595e-3  # m
 
 
-def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglass=None, thermal=True):
+def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglass=None, thermal=True, viscosity=None):
     dx = D0 / across
     text = template
+    if viscosity is not None:  # hourglass dashpots, C_HV (the deck has none)
+        text = re.sub(r"(\n( *)hourglass_coefficient: [^\n]*)", rf"\1\n\2hourglass_viscosity: {viscosity}", text, count=1)
     if not thermal:  # Foster's law as published: drop the thermal_softening section
         text = re.sub(r"\n    thermal_softening:[^\n]*(\n      [^\n]*)+", "", text, count=1)
     if hourglass is not None:
@@ -119,8 +121,8 @@ def experiment(path):
     return shots
 
 
-# (name, across, horizon factor, L0/D0, speed m/s, end time µs[, hourglass coefficient]); without the last entry
-# the shot uses --hourglass (or, without it, the deck's hourglass_coefficient)
+# (name, across, horizon factor, L0/D0, speed m/s, end time µs[, hourglass coefficient[, hourglass viscosity]]);
+# without them the shot uses --hourglass and --hourglass-viscosity (or, without those, the deck's settings)
 SETS = {
     "short": [("short", 8, 3.015, 5, 244, 60)],
     "ld5": [(f"ld5_{v}", 20, 3.015, 5, v, 80) for v in (170, 244, 295)],
@@ -139,6 +141,8 @@ SETS = {
     "ld10": [(f"ld10_{v}", 20, 3.015, 10, v, 100) for v in (235, 256, 271)],
     # the 256 m/s L0/D0 = 10 shot at 30 across (214 800 points, 3 534 steps): about 75 min on one core
     "ld10_n30": [("ld10_n30_256", 30, 3.015, 10, 256, 100)],
+    # 40 across with hourglass dashpots C_HV = 0.05 (the face layers ring without them): about 75 min on one core
+    "convergence40_damped": [("conv_n40_d3_hv", 40, 3.015, 5, 295, 50, 0.02, 0.05)],
     # sensitivity of Df/D0 to the hourglass coefficient (a study, one shot; not a per-shot setting)
     "hourglass": [(f"hg{c}_n20_d3", 20, 3.015, 5, 244, 50, c) for c in (0.01, 0.02, 0.05)],
 }
@@ -154,6 +158,8 @@ def main():
     p.add_argument("--no-thermal", action="store_true",
                    help="without thermal softening (Foster's law as published); the deck's default has it")
     p.add_argument("--hourglass", type=float, help="hourglass coefficient C_HG for every shot (default: the deck's)")
+    p.add_argument("--hourglass-viscosity", type=float,
+                   help="hourglass dashpots C_HV for every shot (default: none, as in the deck)")
     # The shared reference data sits beside the repository (../shared/reference).
     p.add_argument("--data", default=os.path.join(HERE, "..", "..", "..", "shared", "reference",
                                                   "taylor_6061T6_house1995.csv"))
@@ -172,10 +178,11 @@ def main():
     chosen = [shot for shot in SETS[a.set] if not a.only or shot[0] in a.only.split(",")]
     for name, across, hf, ld, speed, end, *rest in chosen:
         chg = rest[0] if rest else (a.hourglass if a.hourglass is not None else deck_hourglass)
+        chv = rest[1] if len(rest) > 1 else a.hourglass_viscosity
         run_dir = os.path.join(os.path.abspath(a.out), name)
         os.makedirs(run_dir, exist_ok=True)
         deck = os.path.join(run_dir, "deck.yaml")
-        open(deck, "w").write(make_deck(template, across, hf, ld, speed, end, chg, not a.no_thermal))
+        open(deck, "w").write(make_deck(template, across, hf, ld, speed, end, chg, not a.no_thermal, chv))
         if not (a.reuse and os.path.exists(os.path.join(run_dir, "output", "results.e"))):
             r = subprocess.run([a.peridot, "run", "-q", "-t", str(a.threads), deck], capture_output=True, text=True)
             if r.returncode != 0:

@@ -15,7 +15,7 @@
 //                    springs alone leave a zero-energy mode that an impact excites ringing at its own
 //                    frequency (the springs store the energy and give it back); the dashpot dissipates it.
 //                    Both c_hv/√c_hg and the mode's geometry are independent of K, ρ and Δx at fixed δ/Δx, so
-//                    its damping ratio is ζ ≈ 2.1 C_HV/√C_HG (0.30 measured at C_HV = C_HG = 0.02 in
+//                    its damping ratio is ζ ≈ 2.1 C_HV/√C_HG (about 0.3 measured at C_HV = C_HG = 0.02 in
 //                    tests/unit/correspondence_hourglass_test.cpp). A rigid or any homogeneous motion has
 //                    ż = 0, so the dashpots too leave the patch tests exact.
 //   gather           f_i = Σ_j (T_i⟨ξ_ij⟩ − T_j⟨ξ_ji⟩) V_j                                    (eq 4)

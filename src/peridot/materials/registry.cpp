@@ -225,7 +225,8 @@ Foster, Silling & Chen (2010).
 - hourglass damping (optional) T^hv⟨ξ⟩ = ω (c_hv/|ξ|) (ż·n) n, ż = (v′ − v) − Ḟξ the rate of Y − Fξ,
   c_hv = 18 C_HV √(ρK)/(πδ³): the same bond with K replaced by a viscosity C_HV ρ c δ, c = √(K/ρ). The springs
   hold a zero-energy mode but store its energy, so an impact leaves it ringing; the dashpots dissipate it.
-  Damping ratio of the checkerboard mode ≈ 2.1 C_HV/√C_HG (measured); C_HV is hourglass_viscosity
+  Damping ratio of the checkerboard mode ≈ 2.1 C_HV/√C_HG (about 0.3 measured at C_HV = C_HG = 0.02); C_HV is
+  hourglass_viscosity
 - (62) Green–Lagrange strain E = ½(FᵀF − I), an output only
 
 Energy bookkeeping (history CSV): strain_energy is the elastic energy Σ J (p²/(2K) + S:S/(4G)) V;
