@@ -142,7 +142,7 @@ SETS = {
     # the 256 m/s L0/D0 = 10 shot at 30 across (214 800 points, 3 534 steps): about 75 min on one core; to
     # 100 µs, since the rod leaves the anvil before (20 across: the anvil's force is 0 from 97.6 µs)
     "ld10_n30": [("ld10_n30_256", 30, 3.015, 10, 256, 100)],
-    # 40 across with hourglass dashpots C_HV = 0.05 (the face layers ring without them): about 75 min on one core
+    # 40 across with hourglass dashpots C_HV = 0.05 (the face layers ring without them): about 85 min on one core
     "convergence40_damped": [("conv_n40_d3_hv", 40, 3.015, 5, 295, 50, 0.02, 0.05)],
     # sensitivity of Df/D0 to the hourglass coefficient (a study, one shot; not a per-shot setting)
     "hourglass": [(f"hg{c}_n20_d3", 20, 3.015, 5, 244, 50, c) for c in (0.01, 0.02, 0.05)],

@@ -160,8 +160,8 @@ TEST(CorrPatch, HomogeneousDeformationGivesZeroForceAwayFromSurface) {
 }
 
 /// A jittered cloud with partial volumes, 6061-T6 J2 with hourglass springs and dashpots (C_HV = 0.1), and a
-/// displacement of 1 %
-/// strain plus a random part of 0.05 Δx reached in one step of 0.1 µs: well into the plastic range.
+/// displacement of 1 % strain plus a random part of 0.05 Δx reached in one step of 0.1 µs: well into the
+/// plastic range.
 struct RandomMotion {
   std::unique_ptr<testing::CorrespondenceCloud> cloud;
   J2Viscoplastic law = J2Viscoplastic::aluminium_6061_t6();
