@@ -28,9 +28,10 @@ import subprocess
 import sys
 
 import numpy as np
-import netCDF4
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
+import peridot_results as pr  # noqa: E402
 D0 = 7.595e-3  # m
 
 
@@ -53,25 +54,15 @@ def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglas
     return text
 
 
-def nodal(ds, names, name, step):
-    k = names.index(name)
-    return np.array(ds.variables[f"vals_nod_var{k + 1}"][step, :])
-
-
 def last_frame(exodus_path, with_deformation_gradient=False):
-    """Reference positions x, deformed positions y and εp of the last frame (and F, 3 × 3 × points, if asked)."""
-    ds = netCDF4.Dataset(exodus_path, "r")
-    ds.set_auto_mask(False)
-    # A name ends at its first NUL; Exodus leaves the rest of the row unwritten (netCDF no-fill mode), so it
-    # may hold stray bytes that netCDF4.chartostring cannot decode.
-    names = [row.tobytes().split(b"\0")[0].decode().strip() for row in np.asarray(ds.variables["name_nod_var"][:])]
-    x = np.array([ds.variables["coord" + a][:] for a in "xyz"])
-    last = ds.dimensions["time_step"].size - 1
-    y = x + np.array([nodal(ds, names, "displacement_" + a, last) for a in "xyz"])
-    eqps = nodal(ds, names, "equivalent_plastic_strain", last)
-    F = (np.array([[nodal(ds, names, f"deformation_gradient_{a}{b}", last) for b in "xyz"] for a in "xyz"])
-         if with_deformation_gradient else None)
-    ds.close()
+    """Reference positions x, deformed positions y (3 × points) and εp of the last frame (and F, 3 × 3 ×
+    points, if asked)."""
+    with pr.Results(exodus_path) as res:
+        x = res.coords.T
+        y = res.positions().T
+        eqps = res.field("equivalent_plastic_strain")
+        F = (np.array([[res.field(f"deformation_gradient_{a}{b}") for b in "xyz"] for a in "xyz"])
+             if with_deformation_gradient else None)
     return x, y, eqps, F
 
 

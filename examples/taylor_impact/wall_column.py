@@ -10,21 +10,19 @@ import argparse
 import os
 import re
 import subprocess
+import sys
 
 import numpy as np
-import netCDF4
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
+import peridot_results as pr  # noqa: E402
 
 
 def layer_profile(exodus_path, spacing, layers=10):
-    ds = netCDF4.Dataset(exodus_path, "r")
-    ds.set_auto_mask(False)
-    names = [row.tobytes().split(b"\0")[0].decode().strip() for row in np.asarray(ds.variables["name_nod_var"][:])]
-    last = lambda name: np.array(ds.variables[f"vals_nod_var{names.index(name) + 1}"][-1, :])
-    x = np.array([ds.variables["coord" + a][:] for a in "xyz"])
-    z, szz = x[2] + last("displacement_z"), last("cauchy_stress_zz")
-    ds.close()
+    with pr.Results(exodus_path) as res:
+        x = res.coords.T
+        z, szz = res.positions()[:, 2], res.field("cauchy_stress_zz")
     layer = np.rint((x[2] - x[2].min()) / spacing).astype(int)
     inner = (np.abs(x[0]) < 0.25 * np.ptp(x[0])) & (np.abs(x[1]) < 0.25 * np.ptp(x[1]))
     height = np.array([z[inner & (layer == k)].mean() for k in range(layers)])

@@ -44,6 +44,7 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
   for (std::size_t i = range.begin; i < range.end; ++i) {
     const double* Ai = A + 9 * i;
     const double* Fi = F + 9 * i;
+    const double* Fdot_i = Fdot + 9 * i;
     const double ci = hourglass ? ctx.hourglass_stiffness[disc.block[i]] : 0.0;
     const double hi = damping ? ctx.hourglass_damping[disc.block[i]] : 0.0;
     double fi[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
@@ -77,7 +78,6 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
         double scalar = wi * ci * zi_n + wj * cj * zj_n;
         if (damping) {  // ż·n with ż = (v_j − v_i) − Ḟ ξ, the affine prediction of each end
           const double hj = ctx.hourglass_damping[disc.block[j]];
-          const double* Fdot_i = Fdot + 9 * i;
           const double* Fdot_j = Fdot + 9 * j;
           double rate_i = 0, rate_j = 0;
           for (int r = 0; r < 3; ++r) {
