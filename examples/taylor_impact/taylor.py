@@ -35,7 +35,8 @@ import peridot_results as pr  # noqa: E402
 D0 = 7.595e-3  # m
 
 
-def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglass=None, thermal=True, viscosity=None):
+def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglass=None, thermal=True, viscosity=None,
+              contact="penalty"):
     dx = D0 / across
     text = template
     if viscosity is not None:  # hourglass dashpots, C_HV (the deck has none)
@@ -48,7 +49,11 @@ def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglas
     text = re.sub(r"horizon_factor: [^\n]*", f"horizon_factor: {horizon_factor}", text, count=1)
     text = re.sub(r"length: [0-9.]+ mm", f"length: {ld * D0!r}", text, count=1)
     text = re.sub(r'z: "-[0-9.]+"', f'z: "-{speed}"', text, count=1)
-    text = re.sub(r"point: \[0, 0, [^\]]*\]", f"point: [0, 0, {0.5 * dx!r}]", text, count=1)
+    if contact == "symmetry":  # the plane on the impact face (z = 0), half a cell below the first layer
+        text = re.sub(r"point: \[0, 0, [^\]]*\], normal: \[0, 0, 1\]", "point: [0, 0, 0], normal: [0, 0, 1], contact: symmetry",
+                      text, count=1)
+    else:
+        text = re.sub(r"point: \[0, 0, [^\]]*\]", f"point: [0, 0, {0.5 * dx!r}]", text, count=1)
     text = re.sub(r"end_time: [^\n]*", f"end_time: {end_time_us} us", text, count=1)
     text = re.sub(r"every: 500", "every: 100000", text, count=1)  # first and last frames only
     return text
@@ -156,6 +161,9 @@ def main():
     p.add_argument("--hourglass-viscosity", type=float,
                    help="hourglass dashpots C_HV for every shot (default: none, as in the deck)")
     # The shared reference data sits beside the repository (../shared/reference).
+    p.add_argument("--contact", choices=("penalty", "symmetry"), default="penalty",
+                   help="the anvil's contact (deck.yaml's rigid_walls): penalty through the first layer's centres, or "
+                        "symmetry (the plane on the impact face; README, \"The face layers\")")
     p.add_argument("--data", default=os.path.join(HERE, "..", "..", "..", "shared", "reference",
                                                   "taylor_6061T6_house1995.csv"))
     p.add_argument("--plot", help="write a figure of Lf/L0 and Df/D0 against the experiment")
@@ -177,7 +185,7 @@ def main():
         run_dir = os.path.join(os.path.abspath(a.out), name)
         os.makedirs(run_dir, exist_ok=True)
         deck = os.path.join(run_dir, "deck.yaml")
-        open(deck, "w").write(make_deck(template, across, hf, ld, speed, end, chg, not a.no_thermal, chv))
+        open(deck, "w").write(make_deck(template, across, hf, ld, speed, end, chg, not a.no_thermal, chv, a.contact))
         if not (a.reuse and os.path.exists(os.path.join(run_dir, "output", "results.e"))):
             r = subprocess.run([a.peridot, "run", "-q", "-t", str(a.threads), deck], capture_output=True, text=True)
             if r.returncode != 0:

@@ -35,17 +35,23 @@ def main():
     p.add_argument("--peridot", required=True)
     p.add_argument("--out", default="wall_column_runs")
     p.add_argument("--hourglass", default="0.02,0.05", help="comma-separated hourglass coefficients")
+    p.add_argument("--contact", choices=("penalty", "symmetry"), default="penalty",
+                   help="the wall's contact: penalty (the plane through the first layer's centres) or symmetry "
+                        "(the plane on the column's base, half a spacing below them)")
     a = p.parse_args()
     template = open(os.path.join(HERE, "wall_column.yaml")).read()
+    if a.contact == "symmetry":
+        template = template.replace("{name: anvil, point: [0, 0, 0.0005], normal: [0, 0, 1]}",
+                                    "{name: anvil, point: [0, 0, 0], normal: [0, 0, 1], contact: symmetry}")
     spacing = 1e-3
     for c in a.hourglass.split(","):
-        run_dir = os.path.join(os.path.abspath(a.out), f"hg{c}")
+        run_dir = os.path.join(os.path.abspath(a.out), f"{a.contact}_hg{c}")
         os.makedirs(run_dir, exist_ok=True)
         deck = os.path.join(run_dir, "deck.yaml")
         open(deck, "w").write(re.sub(r"hourglass_coefficient: [^\n]*", f"hourglass_coefficient: {c}", template))
         subprocess.run([a.peridot, "run", "-q", "-t", "1", deck], check=True)
         gaps, stress = layer_profile(os.path.join(run_dir, "output", "results.e"), spacing)
-        print(f"C_HG = {c}")
+        print(f"C_HG = {c}, contact: {a.contact}")
         print("  gap − Δx (µm), from the wall:", " ".join(f"{g * 1e6:7.2f}" for g in gaps))
         print("  σ_zz (MPa), layer by layer:  ", " ".join(f"{s / 1e6:7.1f}" for s in stress))
     return 0

@@ -9,6 +9,9 @@
 // time step estimate still holds. The force is normal only (frictionless) and elastic: the penalty stores
 // ½ κ g² V and gives it back, so the work of a fixed wall over a whole contact is zero. Every wall acts on
 // every point. The force on the wall is −Σ b V, summed in a thread-independent order.
+// A wall with `contact: symmetry` is, besides, a symmetry plane for the correspondence points near it
+// (correspondence/mirror_bonds.hpp): they are bonded to the mirror images of their neighbours from t = 0
+// until the body leaves; its force in the history then adds what those bonds exert.
 #include <string>
 #include <vector>
 
@@ -26,6 +29,13 @@ struct RigidWall {
   double speed = 0;   ///< s (m/s)
   double stiffness_factor = 0.5;
 };
+
+/// Refuses (InputError at the wall) a wall with contact: symmetry that the mirror bonds cannot model: in a
+/// distributed run; with a point of a non-correspondence body within that body's horizon of it; with a
+/// point behind it at t = 0; when no correspondence point is within a horizon of it, or the nearest is not
+/// half its spacing (V^(1/3)/2, within 2 %) from it, so that the body's surface is not on the plane and
+/// the images would overlap the body or leave a gap; with a point within a horizon of two such walls.
+void check_symmetry_walls(const Problem& problem, const ModelContext& model, bool distributed);
 
 class RigidWalls {
  public:

@@ -20,7 +20,8 @@
 //                    ż = 0, so the dashpots too leave the patch tests exact.
 //   gather           f_i = Σ_j (T_i⟨ξ_ij⟩ − T_j⟨ξ_ji⟩) V_j                                    (eq 4)
 // ω is the bond weight of the context (influence function times partial-volume factor) of the state's
-// owner; broken bonds carry no force. OpenMP over points, no atomics: bitwise independent of threads.
+// owner; broken bonds carry no force. Active bonds to mirror images (mirror_bonds.hpp) are gathered like
+// the others, with the partner's state reflected. OpenMP over points, no atomics: bitwise independent of threads.
 // Since Σ_j ω Y⊗(P K⁻¹ ξ) V_j = F Pᵀ = J σ is symmetric, the correspondence force conserves angular
 // as well as linear momentum; the hourglass force is central and conserves both too.
 #include "peridot/correspondence/constitutive.hpp"
@@ -44,9 +45,11 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
                                   const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f);
 /// The same for the points of `range` only (f is left untouched outside it). When `hourglass` is given
 /// (sized for every point), it receives the hourglass part of f (springs and dashpots) in the range, so
-/// that its work can be measured.
+/// that its work can be measured. When `mirror_force` is given, it receives the part of f from the bonds
+/// to mirror images (ctx.mirror; zero for a point without them): the symmetry plane's force on the point.
 void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
                                   const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f,
-                                  BlockRange range, VectorField* hourglass = nullptr);
+                                  BlockRange range, VectorField* hourglass = nullptr,
+                                  VectorField* mirror_force = nullptr);
 
 }  // namespace peridot::correspondence

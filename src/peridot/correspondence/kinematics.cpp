@@ -88,26 +88,47 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
   // A failure inside the parallel loop cannot throw across OpenMP; the lowest bad index is reported after
   // the loop, which makes the message independent of the thread count.
   std::size_t first_bad = std::numeric_limits<std::size_t>::max();
+  const MirrorBonds& mirror = ctx.mirror;
+  const bool mirrored = mirror.active;
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
   for (std::size_t i = range.begin; i < range.end; ++i) {
     double K[9] = {}, N[9] = {}, Ndot[9] = {};
+    // One bond of weight w (ω V_j) to a partner at reference offset ξ, relative displacement and velocity.
+    auto add_bond = [&](double w, const double* xi, const double* du, const double* dv) {
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          const double y = xi[r] + du[r];
+          K[3 * r + c] += w * xi[r] * xi[c];
+          N[3 * r + c] += w * y * xi[c];
+          Ndot[3 * r + c] += w * dv[r] * xi[c];
+        }
+    };
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       if (bonds.broken[b]) continue;
       const std::size_t j = bonds.neighbors[b];
-      const double w = ctx.bond_weight[b] * disc.volume[j];
-      double xi[3], y[3], dv[3];
+      double xi[3], du[3], dv[3];
       for (int d = 0; d < 3; ++d) {
         xi[d] = x[3 * j + d] - x[3 * i + d];
-        y[d] = xi[d] + (up[3 * j + d] - up[3 * i + d]);
+        du[d] = up[3 * j + d] - up[3 * i + d];
         dv[d] = vp[3 * j + d] - vp[3 * i + d];
       }
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) {
-          K[3 * r + c] += w * xi[r] * xi[c];
-          N[3 * r + c] += w * y[r] * xi[c];
-          Ndot[3 * r + c] += w * dv[r] * xi[c];
-        }
+      add_bond(ctx.bond_weight[b] * disc.volume[j], xi, du, dv);
     }
+    if (mirrored && mirror.planes[mirror.plane_of[i]].active)
+      for (std::uint64_t b = mirror.offsets[i]; b < mirror.offsets[i + 1]; ++b) {
+        const std::size_t j = mirror.source[b];
+        const MirrorPlane& plane = mirror.planes[mirror.plane_of[i]];
+        const Vec3 image = reflect_point(plane, disc.x.get(j));
+        double uj[3], vj[3], xi[3], du[3], dv[3];
+        reflect_vector(plane.normal, up + 3 * j, uj);
+        reflect_vector(plane.normal, vp + 3 * j, vj);
+        for (int d = 0; d < 3; ++d) {
+          xi[d] = image[d] - x[3 * i + d];
+          du[d] = uj[d] - up[3 * i + d];
+          dv[d] = vj[d] - vp[3 * i + d];
+        }
+        add_bond(mirror.weight[b] * disc.volume[j], xi, du, dv);
+      }
     const Mat3 Km = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(K);
     // K is symmetric positive semi-definite; its extreme eigenvalues measure how far it is from singular.
     const Eigen::SelfAdjointEigenSolver<Mat3> eig(Km, Eigen::EigenvaluesOnly);
@@ -133,6 +154,13 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
                      x[3 * j + 2] - x[3 * first_bad + 2]);
       K += ctx.bond_weight[b] * disc.volume[j] * xi * xi.transpose();
     }
+    if (mirrored && mirror.planes[mirror.plane_of[first_bad]].active)
+      for (std::uint64_t b = mirror.offsets[first_bad]; b < mirror.offsets[first_bad + 1]; ++b) {
+        const Vec3 offset = reflect_point(mirror.planes[mirror.plane_of[first_bad]], disc.x.get(mirror.source[b])) -
+                            disc.x.get(first_bad);
+        const Vec3d xi(offset.x, offset.y, offset.z);
+        K += mirror.weight[b] * disc.volume[mirror.source[b]] * xi * xi.transpose();
+      }
     throw_singular_shape_tensor(ctx, first_bad, K);
   }
 }

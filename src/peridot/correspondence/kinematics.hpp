@@ -8,11 +8,13 @@
 //   velocity gradient     L   = Ḟ F⁻¹                              (eq 14)
 // ω here is the influence function times the partial-volume factor of the bond, so K, F, Ḟ and the force
 // state (force.hpp) all use the same quadrature and F is exact for every affine deformation, at every
-// point, boundaries included (the proof after eq 13). Broken bonds are left out of every sum.
+// point, boundaries included (the proof after eq 13). Broken bonds are left out of every sum; the bonds to
+// mirror images across a symmetry plane (mirror_bonds.hpp) are in every sum while they are active.
 // Only 3D is implemented: in 2D the out-of-plane row of K is empty.
 #include <cstdint>
 #include <vector>
 
+#include "peridot/correspondence/mirror_bonds.hpp"
 #include "peridot/correspondence/tensor.hpp"
 #include "peridot/deck/problem.hpp"
 #include "peridot/geometry/discretize.hpp"
@@ -39,6 +41,8 @@ struct CorrespondenceContext {
   /// K is refused when λ_min(K)/λ_max(K) falls below this (dimensionless). At 1e-8 the relative error
   /// that round-off in the bond sums can put into F through K⁻¹ stays near 1e-8.
   double min_reciprocal_condition = 1e-8;
+  /// Bonds to mirror images across symmetry planes (mirror_bonds.hpp), in every sum while `active`.
+  MirrorBonds mirror;
 };
 
 /// Bond weights for a discretization whose blocks are described by `blocks`

@@ -526,6 +526,10 @@ struct Parser {
       w.normal = r["normal"].point;
       w.speed = r["speed"].number;
       w.stiffness_factor = r["stiffness_factor"].number;
+      w.contact = r["contact"].text == "symmetry" ? WallContactKind::symmetry : WallContactKind::penalty;
+      if (w.contact == WallContactKind::symmetry && w.speed != 0)
+        ctx.error(r["speed"].pos, r.path_of("speed"),
+                  "a wall with contact: symmetry must be at rest (its mirror images would move with it)");
       if (r.given("normal")) {
         if (p.dimension == 2) w.normal.z = 0;
         if (norm(w.normal) == 0)

@@ -132,6 +132,10 @@ struct BodyForceSpec {
   std::optional<Expression> component[3];  ///< force density (N/m³) of x, y, z, t
 };
 
+/// How a rigid wall loads the bodies (contact/rigid_wall.hpp): penalty on the points behind it, or, for
+/// correspondence bodies that touch it, also as a symmetry plane (correspondence/mirror_bonds.hpp).
+enum class WallContactKind { penalty, symmetry };
+
 /// A rigid, frictionless plane that the points cannot cross (contact/rigid_wall.hpp): penalty contact on
 /// every point behind it. The plane moves along its normal at `speed`.
 struct RigidWallSpec {
@@ -141,6 +145,7 @@ struct RigidWallSpec {
   Vec3 normal;                   ///< unit normal, pointing toward the side where the bodies are
   double speed = 0;              ///< velocity of the plane along its normal (m/s)
   double stiffness_factor = 0.5; ///< penalty stiffness as a fraction of a full family's bond stiffness (-)
+  WallContactKind contact = WallContactKind::penalty;
 };
 
 struct SolverSpec {

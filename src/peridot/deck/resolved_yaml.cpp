@@ -262,6 +262,7 @@ void emit_loads(YAML::Emitter& out, const Problem& p) {
     emit_point(out, w.normal);
     out << YAML::Key << "speed" << YAML::Value << number(w.speed);
     out << YAML::Key << "stiffness_factor" << YAML::Value << number(w.stiffness_factor);
+    out << YAML::Key << "contact" << YAML::Value << (w.contact == WallContactKind::symmetry ? "symmetry" : "penalty");
   });
 }
 

@@ -290,7 +290,15 @@ std::vector<SectionSpec> make_sections() {
                  .description = "velocity of the plane along its normal (m/s)"},
                 {.key = "stiffness_factor", .default_yaml = "0.5", .range = positive,
                  .description = "penalty stiffness as a fraction of a full family's; 0.5 keeps a surface point no stiffer "
-                                "than an interior one, so the stable time step holds"}}});
+                                "than an interior one, so the stable time step holds"},
+                {.key = "contact", .type = VT::choice, .default_yaml = "penalty",
+                 .description = "penalty: the penalty force alone; symmetry: besides it, the correspondence points within a "
+                                "horizon of the plane are bonded to the mirror images of their neighbours, so the plane "
+                                "loads the body as a symmetry plane does (its mirror image pressed against it), from t = 0 "
+                                "until the total normal force on the body first turns tensile (it leaves); the body's surface "
+                                "must lie on the plane at t = 0 (its nearest points half a spacing from it), the wall must be "
+                                "at rest, and the run serial",
+                 .choices = {"penalty", "symmetry"}}}});
   s.push_back({"solver", "explicit central-difference (velocity Verlet) time integration",
                {{.key = "end_time", .unit = Unit::time, .range = positive, .description = "simulated time (s); or num_steps",
                  .required = true, .one_of = "duration"},

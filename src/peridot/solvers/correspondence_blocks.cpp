@@ -82,6 +82,7 @@ struct CorrespondenceBlocks::Impl {
   bool have_previous = false;
   std::vector<double> hourglass_work;  ///< per point (J)
   bool damped = false;                 ///< some block has hourglass damping: the gather reads partners' Ḟ
+  VectorField mirror_force;            ///< per point: the force density of its mirror bonds (N/m³)
 };
 
 CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo)
@@ -106,6 +107,25 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
     const MaterialParams& p = model.params[b];
     m.ctx.hourglass_stiffness[b] = hourglass_stiffness(p.hourglass_coefficient, p.elastic.bulk_modulus, p.horizon);
     m.ctx.hourglass_damping[b] = p.stable_damping;  // hourglass_damping(C_HV, ρ, K, δ), materials/material.cpp
+  }
+  // Symmetry planes (mirror_bonds.hpp): the walls with contact: symmetry (check_symmetry_walls has
+  // vetted them).
+  std::vector<MirrorPlane> planes;
+  for (std::size_t w = 0; w < problem.rigid_walls.size(); ++w)
+    if (problem.rigid_walls[w].contact == WallContactKind::symmetry)
+      planes.push_back({problem.rigid_walls[w].point, problem.rigid_walls[w].normal, w});
+  if (!planes.empty()) {
+    MirrorBondOptions options;
+    for (const MaterialParams& p : model.params) {
+      options.horizon_of_block.push_back(p.horizon);
+      options.influence_of_block.push_back(p.influence);
+      options.block_is_mirrored.push_back(p.model == ModelKind::correspondence ? 1 : 0);
+    }
+    options.partial_volume_radius = model.partial_volume_radius;
+    options.bond_beyond_horizon = problem.partial_volume == PartialVolumeKind::extended;
+    m.ctx.mirror = build_mirror_bonds(*model.disc, *model.bonds, model.ranges.empty() ? 0 : model.ranges.back().end,
+                                      planes, options);
+    m.mirror_force.resize(n);
   }
   m.damped = std::any_of(m.ctx.hourglass_damping.begin(), m.ctx.hourglass_damping.end(), [](double c) { return c != 0; });
   m.stress.resize(n);
@@ -142,8 +162,10 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
   if (failure) std::rethrow_exception(failure);
   for (AnyBlock& any : m.blocks)
     std::visit([&](auto& block) {
-      compute_correspondence_force(m.ctx, m.kin, m.stress, u, v, f, block.range, &m.hourglass_force);
+      compute_correspondence_force(m.ctx, m.kin, m.stress, u, v, f, block.range, &m.hourglass_force,
+                                   m.ctx.mirror.empty() ? nullptr : &m.mirror_force);
     }, any);
+  if (m.ctx.mirror.active) release_mirror_planes();
 
   // Work of the hourglass forces over the step, trapezoidal like the kinetic energy of velocity Verlet.
   const double* volume = m.model->disc->volume.data();
@@ -162,6 +184,48 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
   std::swap(m.previous_hourglass_force, m.hourglass_force);  // every block point is rewritten next step
   m.previous_u = u;
   m.have_previous = true;
+}
+
+void CorrespondenceBlocks::release_mirror_planes() {
+  Impl& m = *impl_;
+  MirrorBonds& mirror = m.ctx.mirror;
+  const double* volume = m.model->disc->volume.data();
+  for (std::size_t k = 0; k < mirror.planes.size(); ++k) {
+    MirrorPlane& plane = mirror.planes[k];
+    if (!plane.active) continue;
+    // The normal force of the plane on the bodies, summed in point order (serial runs only).
+    const double normal = deterministic_sum(m.mirror_force.size(), [&](std::size_t i) {
+      if (mirror.offsets[i] == mirror.offsets[i + 1] || mirror.plane_of[i] != k) return 0.0;
+      return (m.mirror_force(i, 0) * plane.normal.x + m.mirror_force(i, 1) * plane.normal.y +
+              m.mirror_force(i, 2) * plane.normal.z) * volume[i];
+    });
+    if (normal > 0) plane.compressed = true;
+    else if (plane.compressed) plane.active = false;  // the body pulls away: it leaves the anvil
+  }
+  mirror.active = std::any_of(mirror.planes.begin(), mirror.planes.end(), [](const MirrorPlane& p) { return p.active; });
+}
+
+Vec3 CorrespondenceBlocks::symmetry_wall_force(std::size_t wall) const {
+  const Impl& m = *impl_;
+  const MirrorBonds& mirror = m.ctx.mirror;
+  Vec3 force;
+  if (mirror.empty()) return force;
+  const double* volume = m.model->disc->volume.data();
+  for (std::size_t k = 0; k < mirror.planes.size(); ++k) {
+    if (mirror.planes[k].wall != wall) continue;
+    for (int d = 0; d < 3; ++d)
+      force[d] -= deterministic_sum(m.mirror_force.size(), [&](std::size_t i) {
+        return mirror.offsets[i] < mirror.offsets[i + 1] && mirror.plane_of[i] == k ? m.mirror_force(i, d) * volume[i]
+                                                                                     : 0.0;
+      });
+  }
+  return force;
+}
+
+bool CorrespondenceBlocks::symmetry_wall_active(std::size_t wall) const {
+  for (const MirrorPlane& plane : impl_->ctx.mirror.planes)
+    if (plane.wall == wall) return plane.active;
+  return false;
 }
 
 void CorrespondenceBlocks::strain_energy_density(std::vector<double>& W) const {

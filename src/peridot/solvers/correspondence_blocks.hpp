@@ -10,6 +10,8 @@
 // Bonds between a correspondence block and a block of another model are refused at set-up (InputError at
 // the body): the force state of a correspondence point needs its whole family in F, and an ordinary
 // neighbour's bond force has no counterpart in P K⁻¹. Two correspondence blocks may share bonds.
+// Rigid walls with contact: symmetry add bonds to mirror images (correspondence/mirror_bonds.hpp), released
+// here when the body leaves the wall.
 #include <memory>
 #include <vector>
 
@@ -47,10 +49,20 @@ class CorrespondenceBlocks {
   /// any_thermal_softening) and history.plastic_strain (ε̄p of J2).
   void write_point_outputs(State& state) const;
 
+  /// Force (N) of the mirror bonds of rigid wall `wall` (contact: symmetry) on the wall, −Σ f_m V, at the
+  /// last force computation; zero for other walls and once released (correspondence/mirror_bonds.hpp).
+  Vec3 symmetry_wall_force(std::size_t wall) const;
+  /// Whether wall `wall` is a symmetry plane whose mirror bonds still act.
+  bool symmetry_wall_active(std::size_t wall) const;
+
   /// The Exodus fields a problem with correspondence blocks writes, beyond the standard ones.
   static const std::vector<std::string>& output_field_names();
 
  private:
+  /// Releases each symmetry plane whose normal force on the bodies has turned tensile after it was
+  /// compressive (mirror_bonds.hpp); after every force gather.
+  void release_mirror_planes();
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -91,6 +91,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
 
   std::optional<InputError> refused;
   try {
+    check_symmetry_walls(problem_, model_, !comm_.serial());
     correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_, &halo_);
   } catch (const InputError& e) {
     refused = e;  // found from this rank's bonds only: every rank must hear of it
@@ -404,8 +405,12 @@ Totals Simulation::output_totals() const {
   for (std::size_t i = 0; i < n; ++i)
     if (s.fragment[i] == static_cast<double>(disc.input_id.empty() ? i : disc.input_id[i])) ++totals.fragments;
   totals.external_work = deterministic_sum(n, [&](std::size_t i) { return work[i]; });
-  for (std::size_t w = 0; w < walls_->walls().size(); ++w)
-    totals.wall_force.push_back(walls_->force_on_wall(w, disc, s.u, s.time));
+  for (std::size_t w = 0; w < walls_->walls().size(); ++w) {
+    Vec3 force = walls_->force_on_wall(w, disc, s.u, s.time);
+    if (problem_.rigid_walls[w].contact == WallContactKind::symmetry && has_correspondence())
+      force = force + correspondence_->symmetry_wall_force(w);
+    totals.wall_force.push_back(force);
+  }
   return totals;
 }
 

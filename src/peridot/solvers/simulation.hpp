@@ -84,6 +84,8 @@ class Simulation {
 
   /// Whether some block uses the correspondence model (its history has an hourglass_work column).
   bool has_correspondence() const { return correspondence_ && !correspondence_->empty(); }
+  /// The correspondence blocks (symmetry walls, fields); meaningful when has_correspondence().
+  const CorrespondenceBlocks& correspondence() const { return *correspondence_; }
 
   /// Computes what the outputs read, which the step keeps only as far as it needs (damage, fragment labels,
   /// and with `fields` the dilatation and correspondence fields of an Exodus frame, with `totals` the
