@@ -69,6 +69,9 @@ MirrorBonds build_mirror_bonds(const Discretization& disc, const BondList& bonds
       ++b;
     });
   }
+  for (MirrorPlane& plane : m.planes) plane.block_touches.assign(options.horizon_of_block.size(), 0);
+  for (std::size_t i = 0; i < owned; ++i)
+    if (m.offsets[i] < m.offsets[i + 1]) m.planes[m.plane_of[i]].block_touches[disc.block[i]] = 1;
   m.active = total > 0;
   return m;
 }

@@ -19,8 +19,11 @@
 // the partner's end, ω_j(|ξ'|) (j' → i is the mirror image of j → i').
 //
 // The bodies are welded to their images, so the bonds hold tension too: they are released, all at once and
-// for good, the first step the total normal force of the mirror bonds on the bodies turns tensile after it
-// was compressive (the body leaves the anvil), and the wall's penalty contact stays for any later contact.
+// for good, the first step at which the bodies touching the plane move away from it (their momentum along n
+// is positive) and the total normal force of the mirror bonds on them is tensile: the body leaves the anvil.
+// The force alone would not do: right after an impact the near-plane layers ring in phase over the whole
+// face, and the total force is tensile for a step or two while the body still moves into the plane. The
+// wall's penalty contact stays for any later contact.
 // What the mirror bonds exert on the bodies is the force of the plane on them (the wall's force in the
 // history is its opposite). A fixed plane does no work on the symmetric pair, so the energy balance has no
 // term for it.
@@ -38,7 +41,7 @@ struct MirrorPlane {
   Vec3 normal;  ///< n, unit, toward the bodies
   std::size_t wall = 0;  ///< index of its wall among the problem's rigid walls
   bool active = true;     ///< its bonds are in the sums (until released)
-  bool compressed = false;  ///< the normal force on the bodies has been compressive at some step
+  std::vector<std::uint8_t> block_touches;  ///< per block: some point of it has mirror bonds across this plane
 };
 
 /// CSR of the mirror bonds of every point (empty ranges for the points far from every plane).

@@ -165,7 +165,7 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
       compute_correspondence_force(m.ctx, m.kin, m.stress, u, v, f, block.range, &m.hourglass_force,
                                    m.ctx.mirror.empty() ? nullptr : &m.mirror_force);
     }, any);
-  if (m.ctx.mirror.active) release_mirror_planes();
+  if (m.ctx.mirror.active) release_mirror_planes(v);
 
   // Work of the hourglass forces over the step, trapezoidal like the kinetic energy of velocity Verlet.
   const double* volume = m.model->disc->volume.data();
@@ -186,21 +186,30 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
   m.have_previous = true;
 }
 
-void CorrespondenceBlocks::release_mirror_planes() {
+void CorrespondenceBlocks::release_mirror_planes(const VectorField& v) {
   Impl& m = *impl_;
   MirrorBonds& mirror = m.ctx.mirror;
-  const double* volume = m.model->disc->volume.data();
+  const Discretization& disc = *m.model->disc;
+  const double* volume = disc.volume.data();
+  const std::size_t n = m.mirror_force.size();
   for (std::size_t k = 0; k < mirror.planes.size(); ++k) {
     MirrorPlane& plane = mirror.planes[k];
     if (!plane.active) continue;
-    // The normal force of the plane on the bodies, summed in point order (serial runs only).
-    const double normal = deterministic_sum(m.mirror_force.size(), [&](std::size_t i) {
+    // The normal force of the plane on the bodies and their momentum along n, summed in point order (serial
+    // runs only).
+    const double normal = deterministic_sum(n, [&](std::size_t i) {
       if (mirror.offsets[i] == mirror.offsets[i + 1] || mirror.plane_of[i] != k) return 0.0;
       return (m.mirror_force(i, 0) * plane.normal.x + m.mirror_force(i, 1) * plane.normal.y +
               m.mirror_force(i, 2) * plane.normal.z) * volume[i];
     });
-    if (normal > 0) plane.compressed = true;
-    else if (plane.compressed) plane.active = false;  // the body pulls away: it leaves the anvil
+    if (normal >= 0) continue;
+    const double momentum = deterministic_sum(n, [&](std::size_t i) {
+      const std::size_t block = static_cast<std::size_t>(disc.block[i]);
+      if (!plane.block_touches[block]) return 0.0;
+      return m.model->params[block].density * volume[i] *
+             (v(i, 0) * plane.normal.x + v(i, 1) * plane.normal.y + v(i, 2) * plane.normal.z);
+    });
+    if (momentum > 0) plane.active = false;  // pulled back while moving away: the body leaves the anvil
   }
   mirror.active = std::any_of(mirror.planes.begin(), mirror.planes.end(), [](const MirrorPlane& p) { return p.active; });
 }

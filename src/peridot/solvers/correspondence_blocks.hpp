@@ -59,9 +59,9 @@ class CorrespondenceBlocks {
   static const std::vector<std::string>& output_field_names();
 
  private:
-  /// Releases each symmetry plane whose normal force on the bodies has turned tensile after it was
-  /// compressive (mirror_bonds.hpp); after every force gather.
-  void release_mirror_planes();
+  /// Releases each symmetry plane whose bodies move away from it (momentum along n > 0, from v) while its
+  /// normal force on them is tensile (mirror_bonds.hpp); after every force gather.
+  void release_mirror_planes(const VectorField& v);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
