@@ -21,6 +21,7 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/mpi_mixed.yaml", "pmb|lps interface in 3D, damage, displacement condition, rigid wall"),
     ("tests/regression/decks/inelastic_small.yaml", "lps_plastic beside lps_viscoelastic, damage across the interface"),
     ("tests/regression/decks/mpi_correspondence_wall.yaml", "correspondence J2 with hourglass control on an anvil"),
+    ("tests/regression/decks/mpi_symmetry_wall.yaml", "correspondence J2 on an anvil with contact: symmetry, released"),
 ]
 RANKS = [1, 2, 3, 4]
 

@@ -13,21 +13,17 @@
 
 namespace peridot {
 
-void check_symmetry_walls(const Problem& problem, const ModelContext& model, bool distributed) {
-  const Discretization& disc = *model.disc;
+void check_symmetry_walls(const Problem& problem, const Discretization& disc, const std::vector<MaterialParams>& params) {
   std::vector<std::uint8_t> near(disc.num_points(), 0);  // within a horizon of a symmetry wall
   for (const RigidWallSpec& wall : problem.rigid_walls) {
     if (wall.contact != WallContactKind::symmetry) continue;
     const std::string where = fmt::format("rigid_walls.{}: contact: symmetry", wall.name);
-    if (distributed)
-      throw InputError(wall.pos, where + " runs on one rank only (its release is decided from the total normal "
-                                         "force, summed in the serial point order); run it without mpirun");
     std::size_t nearest = std::numeric_limits<std::size_t>::max();
     double nearest_gap = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < disc.num_points(); ++i) {
       const double gap = dot(disc.x.get(i) - wall.point, wall.normal);
       const std::size_t block = static_cast<std::size_t>(disc.block[i]);
-      const MaterialParams& p = model.params[block];
+      const MaterialParams& p = params[block];
       const Vec3 x = disc.x.get(i);
       if (gap < 0)
         throw InputError(wall.pos, fmt::format("{}: point {} of body '{}' at ({:g}, {:g}, {:g}) m is behind the plane "

@@ -30,12 +30,13 @@ struct RigidWall {
   double stiffness_factor = 0.5;
 };
 
-/// Refuses (InputError at the wall) a wall with contact: symmetry that the mirror bonds cannot model: in a
-/// distributed run; with a point of a non-correspondence body within that body's horizon of it; with a
+/// Refuses (InputError at the wall) a wall with contact: symmetry that the mirror bonds cannot model, from
+/// the whole problem's points `disc` and the blocks' `params`: with a point of a non-correspondence body
+/// within that body's horizon of it; with a
 /// point behind it at t = 0; when no correspondence point is within a horizon of it, or the nearest is not
 /// half its spacing (V^(1/3)/2, within 2 %) from it, so that the body's surface is not on the plane and
 /// the images would overlap the body or leave a gap; with a point within a horizon of two such walls.
-void check_symmetry_walls(const Problem& problem, const ModelContext& model, bool distributed);
+void check_symmetry_walls(const Problem& problem, const Discretization& disc, const std::vector<MaterialParams>& params);
 
 class RigidWalls {
  public:

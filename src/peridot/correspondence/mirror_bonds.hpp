@@ -22,8 +22,10 @@
 // for good, the first step at which the bodies touching the plane move away from it (their momentum along n
 // is positive) and the total normal force of the mirror bonds on them is tensile: the body leaves the anvil.
 // The force alone would not do: right after an impact the near-plane layers ring in phase over the whole
-// face, and the total force is tensile for a step or two while the body still moves into the plane. The
-// wall's penalty contact stays for any later contact.
+// face, and the total force is tensile for a step or two while the body still moves into the plane. Both
+// sums are exact over all ranks (reproducible_sum), so the release is the same step for any rank count. The
+// wall's penalty contact stays for any later contact. Distributed, a mirror partner (i itself or in i's
+// family) is owned or a ghost, and its state is what the ghost exchange already brings.
 // What the mirror bonds exert on the bodies is the force of the plane on them (the wall's force in the
 // history is its opposite). A fixed plane does no work on the symmetric pair, so the energy balance has no
 // term for it.

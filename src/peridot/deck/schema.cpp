@@ -296,8 +296,8 @@ std::vector<SectionSpec> make_sections() {
                                 "horizon of the plane are bonded to the mirror images of their neighbours, so the plane "
                                 "loads the body as a symmetry plane does (its mirror image pressed against it), from t = 0 "
                                 "until the total normal force on the body first turns tensile (it leaves); the body's surface "
-                                "must lie on the plane at t = 0 (its nearest points half a spacing from it), the wall must be "
-                                "at rest, and the run serial",
+                                "must lie on the plane at t = 0 (its nearest points half a spacing from it) and the wall must be "
+                                "at rest",
                  .choices = {"penalty", "symmetry"}}}});
   s.push_back({"solver", "explicit central-difference (velocity Verlet) time integration",
                {{.key = "end_time", .unit = Unit::time, .range = positive, .description = "simulated time (s); or num_steps",

@@ -67,6 +67,13 @@ std::uint64_t Communicator::sum(std::uint64_t x) const {
   return out;
 }
 
+std::int64_t Communicator::sum(std::int64_t x) const {
+  if (serial()) return x;
+  std::int64_t out = x;
+  MPI_Allreduce(&x, &out, 1, MPI_INT64_T, MPI_SUM, comm_);
+  return out;
+}
+
 bool Communicator::any(bool x) const {
   if (serial()) return x;
   int in = x ? 1 : 0, out = 0;

@@ -5,6 +5,8 @@
 // logical or and integer sums do not depend on the order in which ranks contribute. Floating-point sums
 // are never reduced across ranks: they are gathered to rank 0 in the global point order and added there
 // (Simulation), so a printed total is the same bits for any number of ranks.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,6 +31,7 @@ class Communicator {
   double min(double x) const;
   double max(double x) const;
   std::uint64_t sum(std::uint64_t x) const;
+  std::int64_t sum(std::int64_t x) const;
   bool any(bool x) const;
   /// The lowest rank for which x is true, or −1 when none.
   int first_rank_with(bool x) const;
@@ -101,6 +104,30 @@ std::vector<T> Communicator::all_gather(const std::vector<T>& local) const {
   std::vector<T> out(static_cast<std::size_t>(displs.back() + counts.back()));
   MPI_Allgatherv(local.data(), count, mpi_type<T>(), out.data(), counts.data(), displs.data(), mpi_type<T>(), comm_);
   return out;
+}
+
+/// Σ_{i<n} term(i) over every rank's terms with the same bits for any number of ranks and threads, where a
+/// floating-point reduction depends on how the terms are split: each term is rounded to a multiple of 2^e,
+/// e chosen from the largest |term| of all ranks and the total count so that the integer sum cannot
+/// overflow, and the integers are added exactly. The result is within N 2^(e−1) ≈ 1e-19 N² max|term| of
+/// the exact sum (N terms in all): meant for decisions such as a sign, not for reported totals. Collective.
+template <class Term>
+double reproducible_sum(const Communicator& comm, std::size_t n, Term&& term) {
+  double largest = 0;
+#pragma omp parallel for schedule(static) reduction(max : largest)
+  for (std::size_t i = 0; i < n; ++i) largest = std::max(largest, std::abs(term(i)));
+  largest = comm.max(largest);
+  const std::uint64_t total = comm.sum(static_cast<std::uint64_t>(n));
+  if (!(largest > 0) || total == 0) return 0.0;
+  int exponent = 0;
+  std::frexp(largest, &exponent);  // largest < 2^exponent
+  int count_bits = 0;
+  while (count_bits < 63 && (std::uint64_t{1} << count_bits) < total) ++count_bits;
+  const int e = exponent - 62 + count_bits;  // total · 2^(exponent − e) ≤ 2^62
+  std::int64_t local = 0;
+#pragma omp parallel for schedule(static) reduction(+ : local)
+  for (std::size_t i = 0; i < n; ++i) local += std::llround(std::ldexp(term(i), -e));
+  return std::ldexp(static_cast<double>(comm.sum(local)), e);
 }
 
 }  // namespace peridot

@@ -83,13 +83,18 @@ struct CorrespondenceBlocks::Impl {
   std::vector<double> hourglass_work;  ///< per point (J)
   bool damped = false;                 ///< some block has hourglass damping: the gather reads partners' Ḟ
   VectorField mirror_force;            ///< per point: the force density of its mirror bonds (N/m³)
+  Communicator comm;                   ///< the ranks that share the symmetry planes' release decision
+  std::size_t owned = 0;               ///< this rank's points (the ghosts follow)
 };
 
-CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo)
+CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo,
+                                           Communicator comm)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.model = &model;
   m.halo = halo;
+  m.comm = comm;
+  m.owned = model.ranges.empty() ? 0 : model.ranges.back().end;
   std::vector<BlockGeometry> geometry;
   for (std::size_t b = 0; b < model.params.size(); ++b) {
     const MaterialParams& p = model.params[b];
@@ -123,8 +128,12 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
     }
     options.partial_volume_radius = model.partial_volume_radius;
     options.bond_beyond_horizon = problem.partial_volume == PartialVolumeKind::extended;
-    m.ctx.mirror = build_mirror_bonds(*model.disc, *model.bonds, model.ranges.empty() ? 0 : model.ranges.back().end,
-                                      planes, options);
+    m.ctx.mirror = build_mirror_bonds(*model.disc, *model.bonds, m.owned, planes, options);
+    // Distributed, a block touches a plane if it does on some rank; the planes stay active on every rank
+    // even where this rank has no mirror bonds, so that every rank takes part in the release decision.
+    for (MirrorPlane& plane : m.ctx.mirror.planes)
+      for (std::uint8_t& touches : plane.block_touches) touches = m.comm.any(touches != 0) ? 1 : 0;
+    m.ctx.mirror.active = true;
     m.mirror_force.resize(n);
   }
   m.damped = std::any_of(m.ctx.hourglass_damping.begin(), m.ctx.hourglass_damping.end(), [](double c) { return c != 0; });
@@ -163,7 +172,7 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
   for (AnyBlock& any : m.blocks)
     std::visit([&](auto& block) {
       compute_correspondence_force(m.ctx, m.kin, m.stress, u, v, f, block.range, &m.hourglass_force,
-                                   m.ctx.mirror.empty() ? nullptr : &m.mirror_force);
+                                   m.ctx.mirror.planes.empty() ? nullptr : &m.mirror_force);
     }, any);
   if (m.ctx.mirror.active) release_mirror_planes(v);
 
@@ -191,19 +200,19 @@ void CorrespondenceBlocks::release_mirror_planes(const VectorField& v) {
   MirrorBonds& mirror = m.ctx.mirror;
   const Discretization& disc = *m.model->disc;
   const double* volume = disc.volume.data();
-  const std::size_t n = m.mirror_force.size();
+  const std::size_t n = m.owned;
   for (std::size_t k = 0; k < mirror.planes.size(); ++k) {
     MirrorPlane& plane = mirror.planes[k];
     if (!plane.active) continue;
-    // The normal force of the plane on the bodies and their momentum along n, summed in point order (serial
-    // runs only).
-    const double normal = deterministic_sum(n, [&](std::size_t i) {
+    // The normal force of the plane on the bodies and their momentum along n over every rank's points,
+    // summed exactly (the same decision for any number of ranks).
+    const double normal = reproducible_sum(m.comm, n, [&](std::size_t i) {
       if (mirror.offsets[i] == mirror.offsets[i + 1] || mirror.plane_of[i] != k) return 0.0;
       return (m.mirror_force(i, 0) * plane.normal.x + m.mirror_force(i, 1) * plane.normal.y +
               m.mirror_force(i, 2) * plane.normal.z) * volume[i];
     });
     if (normal >= 0) continue;
-    const double momentum = deterministic_sum(n, [&](std::size_t i) {
+    const double momentum = reproducible_sum(m.comm, n, [&](std::size_t i) {
       const std::size_t block = static_cast<std::size_t>(disc.block[i]);
       if (!plane.block_touches[block]) return 0.0;
       return m.model->params[block].density * volume[i] *
@@ -214,21 +223,14 @@ void CorrespondenceBlocks::release_mirror_planes(const VectorField& v) {
   mirror.active = std::any_of(mirror.planes.begin(), mirror.planes.end(), [](const MirrorPlane& p) { return p.active; });
 }
 
-Vec3 CorrespondenceBlocks::symmetry_wall_force(std::size_t wall) const {
+void CorrespondenceBlocks::symmetry_wall_force_density(std::size_t wall, std::vector<double>& out) const {
   const Impl& m = *impl_;
   const MirrorBonds& mirror = m.ctx.mirror;
-  Vec3 force;
-  if (mirror.empty()) return force;
-  const double* volume = m.model->disc->volume.data();
-  for (std::size_t k = 0; k < mirror.planes.size(); ++k) {
-    if (mirror.planes[k].wall != wall) continue;
-    for (int d = 0; d < 3; ++d)
-      force[d] -= deterministic_sum(m.mirror_force.size(), [&](std::size_t i) {
-        return mirror.offsets[i] < mirror.offsets[i + 1] && mirror.plane_of[i] == k ? m.mirror_force(i, d) * volume[i]
-                                                                                     : 0.0;
-      });
-  }
-  return force;
+  out.assign(3 * m.owned, 0.0);
+  if (mirror.empty()) return;
+  for (std::size_t i = 0; i < m.owned; ++i)
+    if (mirror.offsets[i] < mirror.offsets[i + 1] && mirror.planes[mirror.plane_of[i]].wall == wall)
+      for (int d = 0; d < 3; ++d) out[3 * i + d] = m.mirror_force(i, d);
 }
 
 bool CorrespondenceBlocks::symmetry_wall_active(std::size_t wall) const {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "peridot/deck/problem.hpp"
+#include "peridot/parallel/communicator.hpp"
 #include "peridot/parallel/halo.hpp"
 #include "peridot/solvers/internal_force.hpp"
 #include "peridot/state/fields.hpp"
@@ -27,7 +28,9 @@ class CorrespondenceBlocks {
   /// The correspondence blocks of `model` (none: empty()). Throws InputError, at the body's position in
   /// the deck, for a bond between a correspondence block and another model's block. Distributed, `halo`
   /// refreshes the ghosts' P K⁻¹ and F between the stress update and the force gather.
-  CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo = nullptr);
+  /// `comm`: the ranks that decide together when a symmetry plane is released (mirror_bonds.hpp).
+  CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo = nullptr,
+                       Communicator comm = Communicator());
   ~CorrespondenceBlocks();
   CorrespondenceBlocks(const CorrespondenceBlocks&) = delete;
   CorrespondenceBlocks& operator=(const CorrespondenceBlocks&) = delete;
@@ -49,9 +52,10 @@ class CorrespondenceBlocks {
   /// any_thermal_softening) and history.plastic_strain (ε̄p of J2).
   void write_point_outputs(State& state) const;
 
-  /// Force (N) of the mirror bonds of rigid wall `wall` (contact: symmetry) on the wall, −Σ f_m V, at the
-  /// last force computation; zero for other walls and once released (correspondence/mirror_bonds.hpp).
-  Vec3 symmetry_wall_force(std::size_t wall) const;
+  /// Force density (N/m³, 3 per owned point) of the mirror bonds of rigid wall `wall` (contact: symmetry)
+  /// on each point at the last force computation: zero for other walls and once released
+  /// (correspondence/mirror_bonds.hpp). The force on the wall is −Σ f V.
+  void symmetry_wall_force_density(std::size_t wall, std::vector<double>& out) const;
   /// Whether wall `wall` is a symmetry plane whose mirror bonds still act.
   bool symmetry_wall_active(std::size_t wall) const;
 

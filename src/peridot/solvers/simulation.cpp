@@ -91,8 +91,8 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
 
   std::optional<InputError> refused;
   try {
-    check_symmetry_walls(problem_, model_, !comm_.serial());
-    correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_, &halo_);
+    check_symmetry_walls(problem_, comm_.serial() ? disc_ : global_disc_, model_.params);
+    correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_, &halo_, comm_);
   } catch (const InputError& e) {
     refused = e;  // found from this rank's bonds only: every rank must hear of it
   }
@@ -334,6 +334,14 @@ void Simulation::gather_outputs(bool fields, bool totals) {
   if (totals) {
     compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_, &state_.history);
     if (has_correspondence()) correspondence_->strain_energy_density(energy_density_);
+    symmetry_force_density_.resize(problem_.rigid_walls.size());
+    std::vector<double> local;
+    for (std::size_t w = 0; w < problem_.rigid_walls.size(); ++w) {
+      if (problem_.rigid_walls[w].contact != WallContactKind::symmetry || !has_correspondence()) continue;
+      correspondence_->symmetry_wall_force_density(w, local);
+      if (comm_.serial()) symmetry_force_density_[w] = local;
+      else gather_field(local.data(), 3, symmetry_force_density_[w]);
+    }
   }
   if (comm_.serial()) return;
   State& g = global_state_;
@@ -407,8 +415,11 @@ Totals Simulation::output_totals() const {
   totals.external_work = deterministic_sum(n, [&](std::size_t i) { return work[i]; });
   for (std::size_t w = 0; w < walls_->walls().size(); ++w) {
     Vec3 force = walls_->force_on_wall(w, disc, s.u, s.time);
-    if (problem_.rigid_walls[w].contact == WallContactKind::symmetry && has_correspondence())
-      force = force + correspondence_->symmetry_wall_force(w);
+    if (w < symmetry_force_density_.size() && !symmetry_force_density_[w].empty()) {  // the mirror bonds' part (contact: symmetry)
+      const std::vector<double>& f = symmetry_force_density_[w];
+      for (int d = 0; d < 3; ++d)
+        force[d] -= deterministic_sum(n, [&](std::size_t i) { return f[3 * i + d] * disc.volume[i]; });
+    }
     totals.wall_force.push_back(force);
   }
   return totals;

@@ -140,6 +140,9 @@ class Simulation {
   std::vector<NodeSet> global_node_sets_;
   State global_state_;
   std::vector<double> global_energy_density_, global_work_, global_hourglass_work_;
+  /// Per rigid wall with contact: symmetry, after gather_outputs(…, true): its mirror bonds' force density on
+  /// each point of the output discretization (3 per point; empty for other walls).
+  std::vector<std::vector<double>> symmetry_force_density_;
   /// Where each rank's owned points go in the global order (rank 0, distributed): all ranks' global
   /// indices, rank after rank.
   std::vector<std::uint32_t> gathered_index_;
