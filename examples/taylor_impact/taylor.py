@@ -49,11 +49,11 @@ def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglas
     text = re.sub(r"horizon_factor: [^\n]*", f"horizon_factor: {horizon_factor}", text, count=1)
     text = re.sub(r"length: [0-9.]+ mm", f"length: {ld * D0!r}", text, count=1)
     text = re.sub(r'z: "-[0-9.]+"', f'z: "-{speed}"', text, count=1)
-    if contact == "symmetry":  # the plane on the impact face (z = 0), half a cell below the first layer
-        text = re.sub(r"point: \[0, 0, [^\]]*\], normal: \[0, 0, 1\]", "point: [0, 0, 0], normal: [0, 0, 1], contact: symmetry",
-                      text, count=1)
-    else:
-        text = re.sub(r"point: \[0, 0, [^\]]*\]", f"point: [0, 0, {0.5 * dx!r}]", text, count=1)
+    # The anvil: a symmetry plane on the impact face (z = 0, half a cell below the first layer of points), or a
+    # penalty plane through the centres of the first layer.
+    anvil = ("{name: anvil, point: [0, 0, 0], normal: [0, 0, 1], contact: symmetry}" if contact == "symmetry"
+             else f"{{name: anvil, point: [0, 0, {0.5 * dx!r}], normal: [0, 0, 1]}}")
+    text = re.sub(r"\{name: anvil, [^\n]*\}", anvil, text, count=1)
     text = re.sub(r"end_time: [^\n]*", f"end_time: {end_time_us} us", text, count=1)
     text = re.sub(r"every: 500", "every: 100000", text, count=1)  # first and last frames only
     return text
@@ -161,9 +161,10 @@ def main():
     p.add_argument("--hourglass-viscosity", type=float,
                    help="hourglass dashpots C_HV for every shot (default: none, as in the deck)")
     # The shared reference data sits beside the repository (../shared/reference).
-    p.add_argument("--contact", choices=("penalty", "symmetry"), default="penalty",
-                   help="the anvil's contact (deck.yaml's rigid_walls): penalty through the first layer's centres, or "
-                        "symmetry (the plane on the impact face; README, \"The face layers\")")
+    p.add_argument("--contact", choices=("penalty", "symmetry"), default="symmetry",
+                   help="the anvil's contact: symmetry (the deck's: a symmetry plane on the impact face; README, "
+                        "\"The face layers\") or penalty (a penalty plane through the first layer's centres, the "
+                        "earlier versions of this example)")
     p.add_argument("--data", default=os.path.join(HERE, "..", "..", "..", "shared", "reference",
                                                   "taylor_6061T6_house1995.csv"))
     p.add_argument("--plot", help="write a figure of Lf/L0 and Df/D0 against the experiment")

@@ -3,6 +3,8 @@
 hourglass coefficients and prints, for the inner quarter of the cross-section, how much each of the first
 layer gaps differs from Δx and the mean σ_zz of each layer. A uniform compression would shorten every gap by
 the same ≈ 1.5–2 µm; the alternation is the zero-energy mode that the one-layer contact force drives.
+With --contact symmetry the wall is a symmetry plane on the column's base (contact: symmetry) and the
+alternation is gone (README, "The face layers").
 
     /usr/bin/python3 examples/taylor_impact/wall_column.py --peridot build/peridot --out wall_column_runs
 """
