@@ -10,7 +10,8 @@ Sets: short (one coarse rod: the ctest case), ld5 (the three L0/D0 = 5 shots), o
 convergence (295 m/s at 20 and 30 points across, δ = 3 and 4 spacings), all (ld5 + other + convergence),
 figure (what taylor.png shows); the longer studies are listed in SETS below and in README.md.
 Every deck is made from deck.yaml next to this script by changing spacing, horizon factor, length, speed
-and end time; the anvil passes through the centres of the first layer of points.
+and end time; the anvil is a symmetry plane on the impact face (--contact symmetry, the deck's) or a penalty
+plane through the centres of the first layer of points (--contact penalty, the earlier versions).
 
 Measures (points are cell centres on a lattice of spacing Δx):
   Lf = (max z − min z of the points) + Δx, the same formula giving L0 at t = 0;
@@ -246,15 +247,15 @@ def plot(results, shots, path, thermal=True):
             ax.plot([s["speed"] for s in pts], [s[key] for s in pts], "o", mfc="none", color=colours.get(ld, "k"),
                     label=f"House 1995, L0/D0 = {ld:g}")
         for r in results:
-            ax.plot(r["speed"], r[key], "x" if r["across"] == 20 and r["hf"] < 3.5 else "+", ms=9,
-                    color=colours.get(r["ld"], "k"))
+            marker = "*" if r["across"] >= 40 else "x" if r["across"] == 20 and r["hf"] < 3.5 else "+"
+            ax.plot(r["speed"], r[key], marker, ms=9, color=colours.get(r["ld"], "k"))
         ax.set_xlabel("impact speed (m/s)")
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
     heating = "thermal softening" if thermal else "no heating"
     axes[0].set_title(f"Peridot (x: 20 across, δ = 3Δx, C_HG = {results[0]['chg']:g}, {heating}; "
-                      "+: 30 across or δ = 4Δx)", fontsize=8)
+                      "+: 30 across or δ = 4Δx; *: 40 across)", fontsize=8)
     axes[1].set_title("Df: area-equivalent diameter of the face layer", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
