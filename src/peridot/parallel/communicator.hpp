@@ -109,7 +109,7 @@ std::vector<T> Communicator::all_gather(const std::vector<T>& local) const {
 /// Σ_{i<n} term(i) over every rank's terms with the same bits for any number of ranks and threads, where a
 /// floating-point reduction depends on how the terms are split: each term is rounded to a multiple of 2^e,
 /// e chosen from the largest |term| of all ranks and the total count so that the integer sum cannot
-/// overflow, and the integers are added exactly. The result is within N 2^(e−1) ≈ 1e-19 N² max|term| of
+/// overflow, and the integers are added exactly. The result is within N 2^(e−1) ≤ 4e-19 N² max|term| of
 /// the exact sum (N terms in all): meant for decisions such as a sign, not for reported totals. Collective.
 template <class Term>
 double reproducible_sum(const Communicator& comm, std::size_t n, Term&& term) {
