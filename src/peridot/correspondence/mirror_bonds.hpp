@@ -49,14 +49,16 @@ struct MirrorPlane {
 /// CSR of the mirror bonds of every point (empty ranges for the points far from every plane).
 struct MirrorBonds {
   std::vector<MirrorPlane> planes;
-  std::vector<std::uint64_t> offsets;    ///< size N + 1 (empty: no mirror bonds at all)
+  std::vector<std::uint64_t> offsets;    ///< size N + 1 (empty: no symmetry plane)
   std::vector<std::uint32_t> source;     ///< j of the bond i → j'
   std::vector<double> weight;            ///< ω_i(|ξ'|) times the partial-volume factor
   std::vector<double> partner_weight;    ///< ω_j(|ξ'|) times the partial-volume factor (the bond j' → i)
   std::vector<std::uint8_t> plane_of;    ///< per point: its plane (meaningful where it has mirror bonds)
-  bool active = false;                   ///< some plane has bonds and is active
+  /// Some plane is active. Distributed, a plane stays active on a rank without any of its bonds, so that every
+  /// rank takes part in the release decision.
+  bool active = false;
 
-  bool empty() const { return source.empty(); }
+  bool empty() const { return source.empty(); }  ///< no mirror bond on this rank
   std::size_t num_bonds() const { return source.size(); }
 };
 
@@ -92,7 +94,8 @@ struct MirrorBondOptions {
 };
 
 /// The mirror bonds of every point of a mirrored block in [0, owned) across `planes`, found among the
-/// point itself and its family in `bonds`; active when there is any. PERIDOT_REQUIRE fails for a point
+/// point itself and its family in `bonds`; active when this rank has any (CorrespondenceBlocks makes every
+/// rank's active). PERIDOT_REQUIRE fails for a point
 /// with mirror bonds across two planes (the caller refuses such a deck first).
 MirrorBonds build_mirror_bonds(const Discretization& disc, const BondList& bonds, std::size_t owned,
                                const std::vector<MirrorPlane>& planes, const MirrorBondOptions& options);
