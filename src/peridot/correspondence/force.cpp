@@ -90,15 +90,11 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
       }
       for (int r = 0; r < 3; ++r) fi[r] += t[r] * vj;
     };
+    double xi[3], du[3], dv[3];
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       if (bonds.broken[b]) continue;
       const std::size_t j = bonds.neighbors[b];
-      double xi[3], du[3], dv[3];
-      for (int d = 0; d < 3; ++d) {
-        xi[d] = x[3 * j + d] - x[3 * i + d];
-        du[d] = up[3 * j + d] - up[3 * i + d];
-        dv[d] = damping ? vp[3 * j + d] - vp[3 * i + d] : 0.0;
-      }
+      bond_offsets(x, up, vp, i, j, xi, du, dv);  // dv is read only with dashpots
       add_bond(xi, du, dv, A + 9 * j, F + 9 * j, Fdot + 9 * j, static_cast<std::size_t>(disc.block[j]),
                ctx.bond_weight[b], ctx.bond_weight[bonds.reverse[b]], disc.volume[j]);
     }
@@ -108,18 +104,11 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
       const MirrorPlane& plane = mirror.planes[mirror.plane_of[i]];
       for (std::uint64_t b = mirror.offsets[i]; b < mirror.offsets[i + 1]; ++b) {
         const std::size_t j = mirror.source[b];
-        const Vec3 image = reflect_point(plane, disc.x.get(j));
-        double uj[3], vj[3], xi[3], du[3], dv[3], Aj[9], Fj[9], Fdot_j[9];
-        reflect_vector(plane.normal, up + 3 * j, uj);
-        reflect_vector(plane.normal, vp + 3 * j, vj);
+        mirror_bond_offsets(plane, x, up, vp, i, j, xi, du, dv);
+        double Aj[9], Fj[9], Fdot_j[9] = {};  // j′'s state: M A_j M, M F_j M, M Ḟ_j M
         reflect_tensor(plane.normal, A + 9 * j, Aj);
         reflect_tensor(plane.normal, F + 9 * j, Fj);
-        reflect_tensor(plane.normal, Fdot + 9 * j, Fdot_j);
-        for (int d = 0; d < 3; ++d) {
-          xi[d] = image[d] - x[3 * i + d];
-          du[d] = uj[d] - up[3 * i + d];
-          dv[d] = vj[d] - vp[3 * i + d];
-        }
+        if (damping) reflect_tensor(plane.normal, Fdot + 9 * j, Fdot_j);
         add_bond(xi, du, dv, Aj, Fj, Fdot_j, static_cast<std::size_t>(disc.block[j]), mirror.weight[b],
                  mirror.partner_weight[b], disc.volume[j]);
       }

@@ -103,32 +103,21 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
           Ndot[3 * r + c] += w * dv[r] * xi[c];
         }
     };
+    double xi[3], du[3], dv[3];
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       if (bonds.broken[b]) continue;
       const std::size_t j = bonds.neighbors[b];
-      double xi[3], du[3], dv[3];
-      for (int d = 0; d < 3; ++d) {
-        xi[d] = x[3 * j + d] - x[3 * i + d];
-        du[d] = up[3 * j + d] - up[3 * i + d];
-        dv[d] = vp[3 * j + d] - vp[3 * i + d];
-      }
+      bond_offsets(x, up, vp, i, j, xi, du, dv);
       add_bond(ctx.bond_weight[b] * disc.volume[j], xi, du, dv);
     }
-    if (mirrored && mirror.planes[mirror.plane_of[i]].active)
+    if (mirrored && mirror.planes[mirror.plane_of[i]].active) {
+      const MirrorPlane& plane = mirror.planes[mirror.plane_of[i]];
       for (std::uint64_t b = mirror.offsets[i]; b < mirror.offsets[i + 1]; ++b) {
         const std::size_t j = mirror.source[b];
-        const MirrorPlane& plane = mirror.planes[mirror.plane_of[i]];
-        const Vec3 image = reflect_point(plane, disc.x.get(j));
-        double uj[3], vj[3], xi[3], du[3], dv[3];
-        reflect_vector(plane.normal, up + 3 * j, uj);
-        reflect_vector(plane.normal, vp + 3 * j, vj);
-        for (int d = 0; d < 3; ++d) {
-          xi[d] = image[d] - x[3 * i + d];
-          du[d] = uj[d] - up[3 * i + d];
-          dv[d] = vj[d] - vp[3 * i + d];
-        }
+        mirror_bond_offsets(plane, x, up, vp, i, j, xi, du, dv);
         add_bond(mirror.weight[b] * disc.volume[j], xi, du, dv);
       }
+    }
     const Mat3 Km = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(K);
     // K is symmetric positive semi-definite; its extreme eigenvalues measure how far it is from singular.
     const Eigen::SelfAdjointEigenSolver<Mat3> eig(Km, Eigen::EigenvaluesOnly);

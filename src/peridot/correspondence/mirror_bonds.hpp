@@ -59,7 +59,6 @@ struct MirrorBonds {
   bool active = false;
 
   bool empty() const { return source.empty(); }  ///< no mirror bond on this rank
-  std::size_t num_bonds() const { return source.size(); }
 };
 
 /// x − 2((x − p)·n) n
@@ -82,6 +81,30 @@ inline void reflect_tensor(const Vec3& n, const double* A, double* out) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       out[3 * r + c] = A[3 * r + c] - 2 * n[r] * nA[c] - 2 * An[r] * n[c] + 4 * n[r] * n[c] * nAn;
+}
+
+/// Reference offset ξ = X_j − X_i, relative displacement u_j − u_i and relative velocity v_j − v_i of the
+/// bond i → j, from point-major x, u, v (3 per point): what the kinematics and the force gather read of a bond.
+inline void bond_offsets(const double* x, const double* u, const double* v, std::size_t i, std::size_t j,
+                         double* xi, double* du, double* dv) {
+  for (int d = 0; d < 3; ++d) {
+    xi[d] = x[3 * j + d] - x[3 * i + d];
+    du[d] = u[3 * j + d] - u[3 * i + d];
+    dv[d] = v[3 * j + d] - v[3 * i + d];
+  }
+}
+/// The same for the bond i → j′ to the mirror image of j across `plane`: X_j′ − X_i, M u_j − u_i, M v_j − v_i.
+inline void mirror_bond_offsets(const MirrorPlane& plane, const double* x, const double* u, const double* v,
+                                std::size_t i, std::size_t j, double* xi, double* du, double* dv) {
+  const Vec3 image = reflect_point(plane, Vec3{x[3 * j], x[3 * j + 1], x[3 * j + 2]});
+  double uj[3], vj[3];
+  reflect_vector(plane.normal, u + 3 * j, uj);
+  reflect_vector(plane.normal, v + 3 * j, vj);
+  for (int d = 0; d < 3; ++d) {
+    xi[d] = image[d] - x[3 * i + d];
+    du[d] = uj[d] - u[3 * i + d];
+    dv[d] = vj[d] - v[3 * i + d];
+  }
 }
 
 /// What the mirror bonds need of the points and their blocks.

@@ -295,7 +295,7 @@ std::vector<SectionSpec> make_sections() {
                  .description = "penalty: the penalty force alone; symmetry: besides it, the correspondence points within a "
                                 "horizon of the plane are bonded to the mirror images of their neighbours, so the plane "
                                 "loads the body as a symmetry plane does (its mirror image pressed against it), from t = 0 "
-                                "until the total normal force on the body first turns tensile (it leaves); the body's surface "
+                                "until the body moves away from it while pulling on it (it leaves); the body's surface "
                                 "must lie on the plane at t = 0 (its nearest points half a spacing from it) and the wall must be "
                                 "at rest",
                  .choices = {"penalty", "symmetry"}}}});

@@ -339,7 +339,7 @@ void Simulation::gather_outputs(bool fields, bool totals) {
     for (std::size_t w = 0; w < problem_.rigid_walls.size(); ++w) {
       if (problem_.rigid_walls[w].contact != WallContactKind::symmetry || !has_correspondence()) continue;
       correspondence_->symmetry_wall_force_density(w, local);
-      if (comm_.serial()) symmetry_force_density_[w] = local;
+      if (comm_.serial()) symmetry_force_density_[w].swap(local);
       else gather_field(local.data(), 3, symmetry_force_density_[w]);
     }
   }
