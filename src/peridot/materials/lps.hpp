@@ -27,11 +27,11 @@ struct Lps {
                              double e, double xi, double omega) {
     const double theta = s.theta[i];
     return omega * s.inverse_m[i] *
-           (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - theta * xi / p.dilatation_factor));
+           (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - theta * xi * p.inverse_dilatation_factor));
   }
   static double bond_energy(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
                             double e, double xi, double omega) {
-    const double ed = e - s.theta[i] * xi / p.dilatation_factor;
+    const double ed = e - s.theta[i] * xi * p.inverse_dilatation_factor;
     return 0.5 * p.alpha_deviatoric * s.inverse_m[i] * omega * ed * ed;
   }
   static double point_energy(const MaterialParams& p, const KernelFields& s, std::size_t i) {

@@ -52,7 +52,7 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
-        const double ed = g.e - theta[i] * g.xi / p.dilatation_factor;
+        const double ed = g.e - theta[i] * g.xi * p.inverse_dilatation_factor;
         const double elastic = ed - plastic_extension[b] - released * g.xi;
         const double t = alpha * omega * elastic;
         const double v = neighbor_volume(ctx, i, j, g.xi);
@@ -93,7 +93,7 @@ void LpsPlastic::commit(const ModelContext& ctx, const VectorField& u, const std
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         if (bonds.broken[b]) continue;
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, bonds.neighbors[b]);
-        const double ed = g.e - theta[i] * g.xi / p.dilatation_factor;
+        const double ed = g.e - theta[i] * g.xi * p.inverse_dilatation_factor;
         const double plastic = plastic_extension[b] + released * g.xi;  // (P8)
         plastic_extension[b] = plastic + (1 - r) * (ed - plastic);      // (P4)
       }

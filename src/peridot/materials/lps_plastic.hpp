@@ -63,7 +63,7 @@ struct LpsPlastic {
   static double force_scalar(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                              double e, double xi, double omega) {
     const double theta = s.theta[i];
-    const double ed = e - theta * xi / p.dilatation_factor;
+    const double ed = e - theta * xi * p.inverse_dilatation_factor;
     const double plastic = s.bond0[b] + s.released_extension[i] * xi;  // (P8)
     return omega * s.inverse_m[i] *
            (p.alpha_volumetric * theta * xi +
@@ -72,7 +72,7 @@ struct LpsPlastic {
   static double bond_energy(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                             double e, double xi, double omega) {
     const double plastic = s.bond0[b] + s.released_extension[i] * xi;
-    const double elastic = e - s.theta[i] * xi / p.dilatation_factor - plastic;
+    const double elastic = e - s.theta[i] * xi * p.inverse_dilatation_factor - plastic;
     return 0.5 * p.alpha_deviatoric * s.inverse_m[i] * omega * elastic * elastic;
   }
   static double point_energy(const MaterialParams& p, const KernelFields& s, std::size_t i) {

@@ -31,7 +31,7 @@ void LpsViscoelastic::commit(const ModelContext& ctx, const VectorField& u, cons
         if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
-        const double ed = g.e - theta[i] * g.xi / p.dilatation_factor;
+        const double ed = g.e - theta[i] * g.xi * p.inverse_dilatation_factor;
         if (dt > 0) {  // (V4)
           const double rate_tau = (ed - previous[b]) / dt * tau;  // ρτ
           const double z0 = previous[b] - back[b] - rate_tau;

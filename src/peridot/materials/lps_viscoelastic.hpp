@@ -39,14 +39,14 @@ struct LpsViscoelastic {
   static double force_scalar(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                              double e, double xi, double omega) {
     const double theta = s.theta[i];
-    const double ed = e - theta * xi / p.dilatation_factor;
+    const double ed = e - theta * xi * p.inverse_dilatation_factor;
     return omega * s.inverse_m[i] *
            (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (ed - p.relaxing_fraction * back_extension(p, s, b, ed)));
   }
   /// (V5) with the committed e^b: call after commit (or with Δt = 0, when the force uses that e^b too).
   static double bond_energy(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                             double e, double xi, double omega) {
-    const double ed = e - s.theta[i] * xi / p.dilatation_factor;
+    const double ed = e - s.theta[i] * xi * p.inverse_dilatation_factor;
     const double z = ed - s.bond0[b];
     return 0.5 * p.alpha_deviatoric * s.inverse_m[i] * omega *
            ((1 - p.relaxing_fraction) * ed * ed + p.relaxing_fraction * z * z);

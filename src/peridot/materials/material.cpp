@@ -93,10 +93,12 @@ MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const 
     case ModelKind::lps_viscoelastic:
       if (problem.dimension == 3) {
         p.dilatation_factor = 3;
+        p.inverse_dilatation_factor = 1.0 / 3;
         p.alpha_volumetric = 3 * spec.elastic.bulk_modulus;
         p.alpha_deviatoric = 15 * spec.elastic.shear_modulus;
       } else {
         p.dilatation_factor = 2;
+        p.inverse_dilatation_factor = 0.5;
         p.alpha_volumetric = 2 * planar_bulk_modulus(spec.elastic, problem.plane);
         p.alpha_deviatoric = 8 * spec.elastic.shear_modulus;
       }

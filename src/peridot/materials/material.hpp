@@ -4,6 +4,7 @@
 // live in solvers/internal_force.cpp.
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "peridot/deck/problem.hpp"
@@ -24,6 +25,7 @@ struct MaterialParams {
   double alpha_volumetric = 0;
   double alpha_deviatoric = 0;
   double dilatation_factor = 3;
+  double inverse_dilatation_factor = 1.0 / 3;  ///< 1/n: the bond loops multiply, never divide
   /// Bond fails when its stretch exceeds this; +∞ without damage.
   double critical_stretch = std::numeric_limits<double>::infinity();
   /// lps_plastic (Mitchell): a point yields when ‖t^d‖ > k σ_Y, σ_Y = σ_y + H ε̄p, with
@@ -86,6 +88,27 @@ inline double influence(InfluenceKind kind, double xi, double horizon) {
     case InfluenceKind::gaussian: return std::exp(-(xi * xi) / (horizon * horizon));
   }
   return 1.0;
+}
+
+/// influence() for a kind fixed at compile time: what a vectorised bond loop calls (the switch above,
+/// with its call to exp, keeps a loop scalar).
+template <InfluenceKind Kind>
+inline double influence_of(double xi, double horizon) {
+  if constexpr (Kind == InfluenceKind::inverse_distance) return horizon / xi;
+  else if constexpr (Kind == InfluenceKind::gaussian) return std::exp(-(xi * xi) / (horizon * horizon));
+  else return 1.0;
+}
+
+/// Runs f(std::integral_constant<InfluenceKind, kind>) for a kind known only at run time.
+template <class F>
+decltype(auto) with_influence(InfluenceKind kind, F&& f) {
+  using K = InfluenceKind;
+  switch (kind) {
+    case K::inverse_distance: return f(std::integral_constant<K, K::inverse_distance>{});
+    case K::gaussian: return f(std::integral_constant<K, K::gaussian>{});
+    case K::constant: break;
+  }
+  return f(std::integral_constant<K, K::constant>{});
 }
 
 /// ∫₀^δ ω(ξ) ξ^p dξ in closed form, for the calibration of the constants (p = 2, 3, 4).

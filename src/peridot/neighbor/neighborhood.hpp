@@ -35,7 +35,7 @@ void build_reverse_bonds(BondList& bonds);
 inline double partial_volume_factor(double xi, double horizon, double r) {
   if (r <= 0 || xi <= horizon - r) return 1.0;
   if (xi >= horizon + r) return 0.0;
-  return (horizon + r - xi) / (2 * r);
+  return (horizon + r - xi) * (0.5 / r);  // 0.5/r is loop-invariant: a bond loop multiplies
 }
 
 /// True when the segment p → q crosses the pre-crack (2D segment or 3D rectangle).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "peridot/core/error.hpp"
 #include "peridot/damage/critical_stretch.hpp"
@@ -92,6 +93,173 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
   });
 }
 
+namespace {
+
+/// The bonds of point i to its own block, [b_begin, b_end), for the vectorised loops below, with what
+/// they read and write by value: GCC 12 vectorises these loops only when they read private copies (read
+/// through a lambda's references or a struct the OpenMP threads share, every pointer is reloaded after
+/// each store, and the loop stays scalar although -fopt-info reports it vectorised). The neighbours and
+/// broken flags (bytes) are copied to and from a thread's scratch around the loop: with a byte array in
+/// it, GCC either refuses (mask conversions it cannot do for 256-bit vectors) or takes 32 bonds per
+/// iteration, which leaves a quarter of a 122-bond family to the scalar remainder.
+struct SameBlockRun {
+  const double* x;
+  const double* u;
+  const double* volume;
+  const std::uint32_t* reverse;  ///< the partner bond j → i (models with per-bond history)
+  double partial_volume_radius;
+  /// A bond breaks when e > break_limit ξ (+∞: no failure check this step); it stops carrying force
+  /// in this step when e > drop_limit ξ (+∞ when it breaks only after this step's force).
+  double break_limit;
+  double drop_limit;
+  std::uint64_t b_begin, b_end;
+  const std::uint32_t* neighbor;  ///< the run's neighbours, padded (this thread's RunScratch)
+  const double* intact;           ///< per bond of the run: 1 intact, 0 broken
+  double* breaking;               ///< per bond of the run: set to 1 where it breaks now, else 0
+};
+
+/// Longest run of bonds of one point (the scratch the loops below need per thread).
+std::uint64_t longest_family(const BondList& bonds) {
+  std::uint64_t longest = 0;
+  for (std::size_t i = 0; i + 1 < bonds.offsets.size(); ++i)
+    longest = std::max(longest, bonds.offsets[i + 1] - bonds.offsets[i]);
+  return longest;
+}
+
+/// Models without per-bond history run the vectorised loops over a multiple of this many bonds: the
+/// bonds past the run repeat its last neighbour with intact = 0, so they add nothing, and no bond is left
+/// to the scalar remainder loop (GCC 12 takes 16 bonds per iteration here; a 122-bond family would leave
+/// 10 to it, a third of the time). Models with history read it at the bond, so they are not padded.
+constexpr std::uint64_t run_padding = 16;
+inline std::uint64_t padded_length(std::uint64_t n) { return (n + run_padding - 1) / run_padding * run_padding; }
+
+/// The per-thread scratch of the vectorised loops: one family's neighbours, intact flags (1 intact,
+/// 0 broken) and breaking flags (1 where the bond breaks now), padded.
+struct RunScratch {
+  std::vector<std::uint32_t> neighbor;
+  std::vector<double> intact, breaking;
+  explicit RunScratch(std::uint64_t longest)
+      : neighbor(padded_length(longest)), intact(padded_length(longest)), breaking(padded_length(longest)) {}
+  void load(const std::uint32_t* neighbors, const std::uint8_t* broken, std::uint64_t b_begin, std::uint64_t b_end) {
+    const std::uint64_t n = b_end - b_begin;
+    std::copy(neighbors + b_begin, neighbors + b_end, neighbor.begin());
+    double* flags = intact.data();
+    const std::uint8_t* from = broken + b_begin;
+    for (std::uint64_t k = 0; k < n; ++k) flags[k] = 1 - from[k];  // flags are 0 or 1; arithmetic vectorises
+    for (std::uint64_t k = n; k < padded_length(n); ++k) neighbor[k] = n > 0 ? neighbor[n - 1] : 0, flags[k] = 0;
+  }
+  void store(std::uint8_t* broken, std::uint64_t b_begin, std::uint64_t b_end) const {
+    for (std::uint64_t b = b_begin; b < b_end; ++b)
+      if (breaking[b - b_begin] != 0) broken[b] = 1;
+  }
+};
+
+/// The dilatation sum Σ ω ξ e V over the run, and what the bonds that break now took out of it.
+template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence>
+inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_in, const KernelFields& s_in,
+                           std::size_t i, double& sum_out, double& lost_out) {
+  const SameBlockRun run = run_in;  // private copies (SameBlockRun)
+  const MaterialParams p = p_in;
+  const KernelFields s = s_in;
+  const bool partial_volume = run.partial_volume_radius > 0;
+  double x_i[3], u_i[3];
+  for (int d = 0; d < 3; ++d) x_i[d] = run.x[3 * i + d], u_i[d] = run.u[3 * i + d];
+  double sum = 0, lost = 0;
+  if (run.b_begin == run.b_end) {
+    sum_out = 0, lost_out = 0;
+    return;
+  }
+  constexpr bool padded_run = Model::bond_history_arrays == 0;
+  const std::uint64_t count = padded_run ? padded_length(run.b_end - run.b_begin) : run.b_end - run.b_begin;
+#pragma omp simd reduction(+ : sum, lost)
+  for (std::uint64_t k = 0; k < count; ++k) {
+    const std::uint64_t b = run.b_begin + k;  // past the run (padded_run only) never read
+    const std::uint32_t j = run.neighbor[k];
+    // Written out per component, in registers: with an inner loop over Dim, or a struct for the bond's
+    // geometry, GCC 12 leaves the loop scalar.
+    const double dx0 = run.x[3 * j] - x_i[0], dx1 = run.x[3 * j + 1] - x_i[1];
+    const double dx2 = Dim == 3 ? run.x[3 * j + 2] - x_i[2] : 0.0;
+    const double dy0 = dx0 + (run.u[3 * j] - u_i[0]), dy1 = dx1 + (run.u[3 * j + 1] - u_i[1]);
+    const double dy2 = Dim == 3 ? dx2 + (run.u[3 * j + 2] - u_i[2]) : 0.0;
+    double xi2 = dx0 * dx0 + dx1 * dx1, y2 = dy0 * dy0 + dy1 * dy1;
+    if constexpr (Dim == 3) xi2 += dx2 * dx2, y2 += dy2 * dy2;
+    const double xi = std::sqrt(xi2), length = std::sqrt(y2), e = length - xi;
+    double v = run.volume[j];
+    if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
+    const double term = influence_of<Influence>(xi, p.horizon) * xi * Model::dilatation_extension(s, b, e) * v;
+    const bool intact = run.intact[k] != 0;
+    const bool breaks = intact && e > run.break_limit * xi;
+    if constexpr (CheckFailure) run.breaking[k] = breaks ? 1.0 : 0.0;
+    // Weights, not selects: with a select GCC loads V only for the bonds that count, a masked gather it
+    // cannot vectorise. term is finite (ξ > 0), so a weight of 0 adds nothing.
+    sum += term * ((intact && !breaks) ? 1.0 : 0.0);
+    lost += term * (breaks ? 1.0 : 0.0);
+  }
+  sum_out = sum, lost_out = lost;
+}
+
+/// Σ_j of the force density on point i from the bonds of the run.
+template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence>
+inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, const KernelFields& s_in, std::size_t i,
+                      double f[3]) {
+  const SameBlockRun run = run_in;  // private copies (SameBlockRun)
+  const MaterialParams p = p_in;
+  const KernelFields s = s_in;
+  constexpr bool reads_partner_bond = Model::bond_history_arrays > 0;
+  const bool partial_volume = run.partial_volume_radius > 0;
+  double x_i[3], u_i[3];
+  for (int d = 0; d < 3; ++d) x_i[d] = run.x[3 * i + d], u_i[d] = run.u[3 * i + d];
+  double fx = 0, fy = 0, fz = 0;
+  if (run.b_begin == run.b_end) {
+    f[0] = f[1] = f[2] = 0;
+    return;
+  }
+  constexpr bool padded_run = Model::bond_history_arrays == 0;
+  const std::uint64_t count = padded_run ? padded_length(run.b_end - run.b_begin) : run.b_end - run.b_begin;
+#pragma omp simd reduction(+ : fx, fy, fz)
+  for (std::uint64_t k = 0; k < count; ++k) {
+    const std::uint64_t b = run.b_begin + k;  // past the run (padded_run only) never read
+    const std::uint32_t j = run.neighbor[k];
+    // Written out per component, in registers: with an inner loop over Dim, or a struct for the bond's
+    // geometry, GCC 12 leaves the loop scalar.
+    const double dx0 = run.x[3 * j] - x_i[0], dx1 = run.x[3 * j + 1] - x_i[1];
+    const double dx2 = Dim == 3 ? run.x[3 * j + 2] - x_i[2] : 0.0;
+    const double dy0 = dx0 + (run.u[3 * j] - u_i[0]), dy1 = dx1 + (run.u[3 * j + 1] - u_i[1]);
+    const double dy2 = Dim == 3 ? dx2 + (run.u[3 * j + 2] - u_i[2]) : 0.0;
+    double xi2 = dx0 * dx0 + dx1 * dx1, y2 = dy0 * dy0 + dy1 * dy1;
+    if constexpr (Dim == 3) xi2 += dx2 * dx2, y2 += dy2 * dy2;
+    const double xi = std::sqrt(xi2), length = std::sqrt(y2), e = length - xi;
+    const double omega = influence_of<Influence>(xi, p.horizon);
+    const std::uint64_t partner_bond = reads_partner_bond ? run.reverse[b] : 0;
+    const double t = Model::force_scalar(p, s, i, b, e, xi, omega) +
+                     Model::force_scalar(p, s, j, partner_bond, e, xi, omega);
+    double v = run.volume[j];
+    if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
+    const double carried = t * v / length;
+    const bool intact = run.intact[k] != 0;
+    if constexpr (CheckFailure) run.breaking[k] = (intact && e > run.break_limit * xi) ? 1.0 : 0.0;
+    const double scale = (intact && !(e > run.drop_limit * xi)) ? carried : 0.0;
+    fx += scale * dy0;
+    fy += scale * dy1;
+    if constexpr (Dim == 3) fz += scale * dy2;
+  }
+  f[0] = fx, f[1] = fy, f[2] = fz;
+}
+
+/// Point i's run of bonds to its own block. Neighbours are sorted by global index, and every block is a
+/// contiguous global index range, so the bonds to this block form one run [b_begin, b_end) between the
+/// bonds to lower and to higher blocks. (Found by block, not index: a rank's ghosts sit after its owned
+/// points.) Bonds to other blocks (interfaces only) take the general path.
+inline void find_run(const BondList& bonds, const std::vector<std::int32_t>& blocks, std::size_t i,
+                     std::uint64_t& b_begin, std::uint64_t& b_end) {
+  const std::int32_t block_i = blocks[i];
+  b_begin = bonds.offsets[i], b_end = bonds.offsets[i + 1];
+  while (b_begin < b_end && blocks[bonds.neighbors[b_begin]] < block_i) ++b_begin;
+  while (b_end > b_begin && blocks[bonds.neighbors[b_end - 1]] > block_i) --b_end;
+}
+
+}  // namespace
+
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
                         MaterialHistory* history) {
   double* released = history && !history->released_extension.empty() ? history->released_extension.data() : nullptr;
@@ -100,29 +268,58 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
   const double* x = ctx.disc->x.data();
   const double* up = u.data();
   BondList& bonds = *ctx.bonds;  // broken flags are written when fail_bonds
+  const std::uint32_t* neighbors = bonds.neighbors.data();
+  std::uint8_t* broken = bonds.broken.data();
   const auto& blocks = ctx.disc->block;
   theta.resize(ctx.disc->num_points());
   const KernelFields fields = kernel_fields(ctx, theta, history);
+  // With protected points the failure check needs both ends' flags: the general path only.
+  const bool vector_path = failure.no_fail == nullptr;
+  const std::uint64_t longest = vector_path ? longest_family(bonds) : 0;
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = range.begin; i < range.end; ++i) {
-      double sum = 0, lost = 0;
-      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-        if (bonds.broken[b]) continue;
-        const std::uint32_t j = bonds.neighbors[b];
-        const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
-        const double term = influence(p.influence, g.xi, p.horizon) * g.xi * model.dilatation_extension(fields, b, g.e) *
-                            neighbor_volume(ctx, i, j, g.xi);
-        if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, blocks[i], j))) {
-          bonds.broken[b] = 1;
-          lost += term;
-          continue;
+    using Model = decltype(model);
+    const double break_limit = fail_bonds ? p.critical_stretch : std::numeric_limits<double>::infinity();
+#pragma omp parallel
+    {
+      RunScratch scratch(longest);
+      SameBlockRun run{x, up, ctx.disc->volume.data(), bonds.reverse.data(), ctx.partial_volume_radius,
+                       break_limit, break_limit, 0, 0, scratch.neighbor.data(), scratch.intact.data(), scratch.breaking.data()};
+#pragma omp for schedule(static)
+      for (std::size_t i = range.begin; i < range.end; ++i) {
+        find_run(bonds, blocks, i, run.b_begin, run.b_end);
+        double sum = 0, lost = 0;
+        if (vector_path) {
+          scratch.load(neighbors, broken, run.b_begin, run.b_end);
+          with_influence(p.influence, [&](auto kind) {
+            if (fail_bonds)
+              run_dilatation<Dim, Model, true, kind.value>(run, p, fields, i, sum, lost);
+            else
+              run_dilatation<Dim, Model, false, kind.value>(run, p, fields, i, sum, lost);
+          });
+          if (fail_bonds) scratch.store(broken, run.b_begin, run.b_end);
         }
-        sum += term;
+        // The general path: every bond of a protected deck, and interface bonds.
+        auto general_bond = [&](std::uint64_t b) {
+          if (broken[b]) return;
+          const std::uint32_t j = neighbors[b];
+          const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
+          const double term = influence(p.influence, g.xi, p.horizon) * g.xi *
+                              model.dilatation_extension(fields, b, g.e) * neighbor_volume(ctx, i, j, g.xi);
+          if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, blocks[i], j))) {
+            broken[b] = 1;
+            lost += term;
+            return;
+          }
+          sum += term;
+        };
+        if (!vector_path)
+          for (std::uint64_t b = run.b_begin; b < run.b_end; ++b) general_bond(b);
+        for (std::uint64_t b = bonds.offsets[i]; b < run.b_begin; ++b) general_bond(b);
+        for (std::uint64_t b = run.b_end; b < bonds.offsets[i + 1]; ++b) general_bond(b);
+        theta[i] = p.dilatation_factor * sum * inverse_m[i];
+        if (released && fail_bonds) released[i] = lost * inverse_m[i];
       }
-      theta[i] = p.dilatation_factor * sum * inverse_m[i];
-      if (released && fail_bonds) released[i] = lost * inverse_m[i];
     }
   });
 }
@@ -150,78 +347,68 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
   double* fp = f.data();
   const BondList& bonds = *ctx.bonds;
   const auto& blocks = ctx.disc->block;
-  const double* volume = ctx.disc->volume.data();
   const std::uint32_t* neighbors = bonds.neighbors.data();
   const std::uint32_t* reverse = bonds.reverse.data();
   std::uint8_t* broken = ctx.bonds->broken.data();
   const bool any_history = ctx.bond_history_arrays() > 0;
   const bool after_force = ctx.bond_failure_after_force;
+  // With protected points the failure check needs both ends' flags: the general path only.
+  const bool vector_path = failure.no_fail == nullptr;
+  const std::uint64_t longest = vector_path ? longest_family(bonds) : 0;
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
-    // The partner's bond j → i, for models that keep per-bond history; never read by the others.
-    constexpr bool reads_partner_bond = decltype(model)::bond_history_arrays > 0;
-    const bool partial_volume = ctx.partial_volume_radius > 0;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = range.begin; i < range.end; ++i) {
-      double x_i[3], u_i[3];  // position and displacement of point i
-      for (int d = 0; d < 3; ++d) x_i[d] = x[3 * i + d], u_i[d] = up[3 * i + d];
-      // Neighbours are sorted by global index, and every block is a contiguous global index range, so
-      // the bonds to this block form one run [b_begin, b_end) between the bonds to lower and to higher
-      // blocks: a branch-free loop that vectorises. Bonds to other blocks (interfaces only) take the
-      // general path below. (Found by block, not index: a rank's ghosts sit after its owned points.)
-      const std::int32_t block_i = blocks[i];
-      std::uint64_t b_begin = bonds.offsets[i], b_end = bonds.offsets[i + 1];
-      while (b_begin < b_end && blocks[neighbors[b_begin]] < block_i) ++b_begin;
-      while (b_end > b_begin && blocks[neighbors[b_end - 1]] > block_i) --b_end;
-      double fx = 0, fy = 0, fz = 0;
-#pragma omp simd reduction(+ : fx, fy, fz)
-      for (std::uint64_t b = b_begin; b < b_end; ++b) {
-        const std::uint32_t j = neighbors[b];
-        double dy[3], xi2 = 0, y2 = 0;
-        for (int d = 0; d < Dim; ++d) {
-          const double dx = x[3 * j + d] - x_i[d];
-          dy[d] = dx + (up[3 * j + d] - u_i[d]);
-          xi2 += dx * dx;
-          y2 += dy[d] * dy[d];
+    using Model = decltype(model);
+    const double infinity = std::numeric_limits<double>::infinity();
+    const double break_limit = fail_bonds ? p.critical_stretch : infinity;
+#pragma omp parallel
+    {
+      RunScratch scratch(longest);
+      SameBlockRun run{x, up, ctx.disc->volume.data(), reverse, ctx.partial_volume_radius, break_limit,
+                       after_force ? infinity : break_limit, 0, 0, scratch.neighbor.data(), scratch.intact.data(), scratch.breaking.data()};
+#pragma omp for schedule(static)
+      for (std::size_t i = range.begin; i < range.end; ++i) {
+        find_run(bonds, blocks, i, run.b_begin, run.b_end);
+        double fi[3] = {0, 0, 0};
+        if (vector_path) {
+          scratch.load(neighbors, broken, run.b_begin, run.b_end);
+          with_influence(p.influence, [&](auto kind) {
+            if (fail_bonds)
+              run_force<Dim, Model, true, kind.value>(run, p, fields, i, fi);
+            else
+              run_force<Dim, Model, false, kind.value>(run, p, fields, i, fi);
+          });
+          if (fail_bonds) scratch.store(broken, run.b_begin, run.b_end);
         }
-        const double xi = std::sqrt(xi2), length = std::sqrt(y2), e = length - xi;
-        const double omega = influence(p.influence, xi, p.horizon);
-        const std::uint64_t partner_bond = reads_partner_bond ? reverse[b] : 0;
-        const double t = model.force_scalar(p, fields, i, b, e, xi, omega) +
-                         model.force_scalar(p, fields, j, partner_bond, e, xi, omega);
-        double v = volume[j];
-        if (partial_volume) v *= partial_volume_factor(xi, p.horizon, ctx.partial_volume_radius);
-        const bool was_broken = broken[b];
-        const bool breaks = fail_bonds && !was_broken && failure.fails(i, j, e, xi, p.critical_stretch);
-        if (breaks) broken[b] = 1;
-        const bool carries = !(was_broken || (breaks && !after_force));
-        const double scale = carries ? t * v / length : 0.0;
-        fx += scale * dy[0];
-        fy += scale * dy[1];
-        if constexpr (Dim == 3) fz += scale * dy[2];
+        double fx = fi[0], fy = fi[1], fz = fi[2];
+        // The general path: every bond of a protected deck, and interface bonds (t_ji from the
+        // neighbour's own model and parameters).
+        auto general_bond = [&](std::uint64_t b) {
+          if (broken[b]) return;
+          const std::uint32_t j = neighbors[b];
+          const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
+          if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, blocks[i], j))) {
+            broken[b] = 1;
+            if (!after_force) return;
+          }
+          const double omega = influence(p.influence, g.xi, p.horizon);
+          const std::uint64_t partner_bond = any_history ? reverse[b] : 0;
+          const double t_ji = blocks[j] == blocks[i]
+                                  ? model.force_scalar(p, fields, j, partner_bond, g.e, g.xi, omega)
+                                  : other_block_force_scalar(ctx.params[blocks[j]], fields, j, partner_bond, g.e, g.xi);
+          const double t = model.force_scalar(p, fields, i, b, g.e, g.xi, omega) + t_ji;
+          const double scale = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
+          fx += scale * g.y[0];
+          fy += scale * g.y[1];
+          if constexpr (Dim == 3) fz += scale * g.y[2];
+        };
+        if (!vector_path)
+          for (std::uint64_t b = run.b_begin; b < run.b_end; ++b) general_bond(b);
+        for (std::uint64_t b = bonds.offsets[i]; b < run.b_begin; ++b) general_bond(b);
+        for (std::uint64_t b = run.b_end; b < bonds.offsets[i + 1]; ++b) general_bond(b);
+        fp[3 * i] = fx;
+        fp[3 * i + 1] = fy;
+        fp[3 * i + 2] = fz;
       }
-      // Interface bonds: t_ji from the neighbour's own model and parameters.
-      auto interface_bond = [&](std::uint64_t b) {
-        if (broken[b]) return;
-        const std::uint32_t j = neighbors[b];
-        const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
-        if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, blocks[i], j))) {
-          broken[b] = 1;
-          if (!after_force) return;
-        }
-        const double omega = influence(p.influence, g.xi, p.horizon);
-        const double t = model.force_scalar(p, fields, i, b, g.e, g.xi, omega) +
-                         other_block_force_scalar(ctx.params[blocks[j]], fields, j, any_history ? reverse[b] : 0, g.e, g.xi);
-        const double scale = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
-        fx += scale * g.y[0];
-        fy += scale * g.y[1];
-        if constexpr (Dim == 3) fz += scale * g.y[2];
-      };
-      for (std::uint64_t b = bonds.offsets[i]; b < b_begin; ++b) interface_bond(b);
-      for (std::uint64_t b = b_end; b < bonds.offsets[i + 1]; ++b) interface_bond(b);
-      fp[3 * i] = fx;
-      fp[3 * i + 1] = fy;
-      fp[3 * i + 2] = fz;
     }
   });
 }
