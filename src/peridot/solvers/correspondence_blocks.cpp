@@ -118,7 +118,7 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   std::vector<MirrorPlane> planes;
   for (std::size_t w = 0; w < problem.rigid_walls.size(); ++w)
     if (problem.rigid_walls[w].contact == WallContactKind::symmetry)
-      planes.push_back({problem.rigid_walls[w].point, problem.rigid_walls[w].normal, w});
+      planes.push_back({problem.rigid_walls[w].point, problem.rigid_walls[w].normal, w, true, {}});
   if (!planes.empty()) {
     MirrorBondOptions options;
     for (const MaterialParams& p : model.params) {
