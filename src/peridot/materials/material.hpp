@@ -80,18 +80,8 @@ MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const 
 /// 9KG/(3K + 4G) = E/(2(1 − ν)). (reference/algorithms.md §6)
 double planar_bulk_modulus(const ElasticConstants& c, PlaneKind plane);
 
-/// ω(ξ): 1, δ/ξ, or exp(−ξ²/δ²).
-inline double influence(InfluenceKind kind, double xi, double horizon) {
-  switch (kind) {
-    case InfluenceKind::constant: return 1.0;
-    case InfluenceKind::inverse_distance: return horizon / xi;
-    case InfluenceKind::gaussian: return std::exp(-(xi * xi) / (horizon * horizon));
-  }
-  return 1.0;
-}
-
-/// influence() for a kind fixed at compile time: what a vectorised bond loop calls (the switch above,
-/// with its call to exp, keeps a loop scalar).
+/// ω(ξ) = 1, δ/ξ or exp(−ξ²/δ²) for a kind fixed at compile time: what a vectorised bond loop calls (a
+/// run-time switch, with its call to exp, keeps a loop scalar).
 template <InfluenceKind Kind>
 inline double influence_of(double xi, double horizon) {
   if constexpr (Kind == InfluenceKind::inverse_distance) return horizon / xi;
@@ -109,6 +99,11 @@ decltype(auto) with_influence(InfluenceKind kind, F&& f) {
     case K::constant: break;
   }
   return f(std::integral_constant<K, K::constant>{});
+}
+
+/// ω(ξ) for a kind known only at run time.
+inline double influence(InfluenceKind kind, double xi, double horizon) {
+  return with_influence(kind, [&](auto k) { return influence_of<k.value>(xi, horizon); });
 }
 
 /// ∫₀^δ ω(ξ) ξ^p dξ in closed form, for the calibration of the constants (p = 2, 3, 4).

@@ -118,14 +118,6 @@ struct SameBlockRun {
   double* breaking;               ///< per bond of the run: set to 1 where it breaks now, else 0
 };
 
-/// Longest run of bonds of one point (the scratch the loops below need per thread).
-std::uint64_t longest_family(const BondList& bonds) {
-  std::uint64_t longest = 0;
-  for (std::size_t i = 0; i + 1 < bonds.offsets.size(); ++i)
-    longest = std::max(longest, bonds.offsets[i + 1] - bonds.offsets[i]);
-  return longest;
-}
-
 /// Models without per-bond history run the vectorised loops over a multiple of this many bonds: the
 /// bonds past the run repeat its last neighbour with intact = 0, so they add nothing, and no bond is left
 /// to the scalar remainder loop (GCC 12 takes 16 bonds per iteration here; a 122-bond family would leave
@@ -134,14 +126,16 @@ constexpr std::uint64_t run_padding = 16;
 inline std::uint64_t padded_length(std::uint64_t n) { return (n + run_padding - 1) / run_padding * run_padding; }
 
 /// The per-thread scratch of the vectorised loops: one family's neighbours, intact flags (1 intact,
-/// 0 broken) and breaking flags (1 where the bond breaks now), padded.
+/// 0 broken) and breaking flags (1 where the bond breaks now), padded; it grows to the longest family.
 struct RunScratch {
   std::vector<std::uint32_t> neighbor;
   std::vector<double> intact, breaking;
-  explicit RunScratch(std::uint64_t longest)
-      : neighbor(padded_length(longest)), intact(padded_length(longest)), breaking(padded_length(longest)) {}
-  void load(const std::uint32_t* neighbors, const std::uint8_t* broken, std::uint64_t b_begin, std::uint64_t b_end) {
-    const std::uint64_t n = b_end - b_begin;
+  /// Copies the run's neighbours and flags in and points `run` at them.
+  void load(const std::uint32_t* neighbors, const std::uint8_t* broken, SameBlockRun& run) {
+    const std::uint64_t b_begin = run.b_begin, b_end = run.b_end, n = b_end - b_begin;
+    if (neighbor.size() < padded_length(n))
+      neighbor.resize(padded_length(n)), intact.resize(padded_length(n)), breaking.resize(padded_length(n));
+    run.neighbor = neighbor.data(), run.intact = intact.data(), run.breaking = breaking.data();
     std::copy(neighbors + b_begin, neighbors + b_end, neighbor.begin());
     double* flags = intact.data();
     const std::uint8_t* from = broken + b_begin;
@@ -154,6 +148,22 @@ struct RunScratch {
   }
 };
 
+/// Deformed bond Y = (dy0, dy1, dy2), |ξ| and |Y| of the bond to j, written out per component into the
+/// caller's registers: with an inner loop over Dim, or a struct returned (bond_geometry in bond_loop.hpp),
+/// GCC 12 leaves the loops below scalar.
+template <int Dim>
+[[gnu::always_inline]] inline void run_bond_geometry(const SameBlockRun& run, const double x_i[3], const double u_i[3],
+                                                     std::uint32_t j, double& dy0, double& dy1, double& dy2,
+                                                     double& xi, double& length) {
+  const double dx0 = run.x[3 * j] - x_i[0], dx1 = run.x[3 * j + 1] - x_i[1];
+  const double dx2 = Dim == 3 ? run.x[3 * j + 2] - x_i[2] : 0.0;
+  dy0 = dx0 + (run.u[3 * j] - u_i[0]), dy1 = dx1 + (run.u[3 * j + 1] - u_i[1]);
+  dy2 = Dim == 3 ? dx2 + (run.u[3 * j + 2] - u_i[2]) : 0.0;
+  double xi2 = dx0 * dx0 + dx1 * dx1, y2 = dy0 * dy0 + dy1 * dy1;
+  if constexpr (Dim == 3) xi2 += dx2 * dx2, y2 += dy2 * dy2;
+  xi = std::sqrt(xi2), length = std::sqrt(y2);
+}
+
 /// The dilatation sum Σ ω ξ e V over the run, and what the bonds that break now took out of it.
 template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence>
 inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_in, const KernelFields& s_in,
@@ -165,25 +175,15 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
   double x_i[3], u_i[3];
   for (int d = 0; d < 3; ++d) x_i[d] = run.x[3 * i + d], u_i[d] = run.u[3 * i + d];
   double sum = 0, lost = 0;
-  if (run.b_begin == run.b_end) {
-    sum_out = 0, lost_out = 0;
-    return;
-  }
   constexpr bool padded_run = Model::bond_history_arrays == 0;
   const std::uint64_t count = padded_run ? padded_length(run.b_end - run.b_begin) : run.b_end - run.b_begin;
 #pragma omp simd reduction(+ : sum, lost)
   for (std::uint64_t k = 0; k < count; ++k) {
     const std::uint64_t b = run.b_begin + k;  // past the run (padded_run only) never read
     const std::uint32_t j = run.neighbor[k];
-    // Written out per component, in registers: with an inner loop over Dim, or a struct for the bond's
-    // geometry, GCC 12 leaves the loop scalar.
-    const double dx0 = run.x[3 * j] - x_i[0], dx1 = run.x[3 * j + 1] - x_i[1];
-    const double dx2 = Dim == 3 ? run.x[3 * j + 2] - x_i[2] : 0.0;
-    const double dy0 = dx0 + (run.u[3 * j] - u_i[0]), dy1 = dx1 + (run.u[3 * j + 1] - u_i[1]);
-    const double dy2 = Dim == 3 ? dx2 + (run.u[3 * j + 2] - u_i[2]) : 0.0;
-    double xi2 = dx0 * dx0 + dx1 * dx1, y2 = dy0 * dy0 + dy1 * dy1;
-    if constexpr (Dim == 3) xi2 += dx2 * dx2, y2 += dy2 * dy2;
-    const double xi = std::sqrt(xi2), length = std::sqrt(y2), e = length - xi;
+    double dy0, dy1, dy2, xi, length;
+    run_bond_geometry<Dim>(run, x_i, u_i, j, dy0, dy1, dy2, xi, length);
+    const double e = length - xi;
     double v = run.volume[j];
     if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
     const double term = influence_of<Influence>(xi, p.horizon) * xi * Model::dilatation_extension(s, b, e) * v;
@@ -210,25 +210,15 @@ inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, co
   double x_i[3], u_i[3];
   for (int d = 0; d < 3; ++d) x_i[d] = run.x[3 * i + d], u_i[d] = run.u[3 * i + d];
   double fx = 0, fy = 0, fz = 0;
-  if (run.b_begin == run.b_end) {
-    f[0] = f[1] = f[2] = 0;
-    return;
-  }
   constexpr bool padded_run = Model::bond_history_arrays == 0;
   const std::uint64_t count = padded_run ? padded_length(run.b_end - run.b_begin) : run.b_end - run.b_begin;
 #pragma omp simd reduction(+ : fx, fy, fz)
   for (std::uint64_t k = 0; k < count; ++k) {
     const std::uint64_t b = run.b_begin + k;  // past the run (padded_run only) never read
     const std::uint32_t j = run.neighbor[k];
-    // Written out per component, in registers: with an inner loop over Dim, or a struct for the bond's
-    // geometry, GCC 12 leaves the loop scalar.
-    const double dx0 = run.x[3 * j] - x_i[0], dx1 = run.x[3 * j + 1] - x_i[1];
-    const double dx2 = Dim == 3 ? run.x[3 * j + 2] - x_i[2] : 0.0;
-    const double dy0 = dx0 + (run.u[3 * j] - u_i[0]), dy1 = dx1 + (run.u[3 * j + 1] - u_i[1]);
-    const double dy2 = Dim == 3 ? dx2 + (run.u[3 * j + 2] - u_i[2]) : 0.0;
-    double xi2 = dx0 * dx0 + dx1 * dx1, y2 = dy0 * dy0 + dy1 * dy1;
-    if constexpr (Dim == 3) xi2 += dx2 * dx2, y2 += dy2 * dy2;
-    const double xi = std::sqrt(xi2), length = std::sqrt(y2), e = length - xi;
+    double dy0, dy1, dy2, xi, length;
+    run_bond_geometry<Dim>(run, x_i, u_i, j, dy0, dy1, dy2, xi, length);
+    const double e = length - xi;
     const double omega = influence_of<Influence>(xi, p.horizon);
     const std::uint64_t partner_bond = reads_partner_bond ? run.reverse[b] : 0;
     const double t = Model::force_scalar(p, s, i, b, e, xi, omega) +
@@ -275,22 +265,21 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
   const KernelFields fields = kernel_fields(ctx, theta, history);
   // With protected points the failure check needs both ends' flags: the general path only.
   const bool vector_path = failure.no_fail == nullptr;
-  const std::uint64_t longest = vector_path ? longest_family(bonds) : 0;
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
     using Model = decltype(model);
     const double break_limit = fail_bonds ? p.critical_stretch : std::numeric_limits<double>::infinity();
 #pragma omp parallel
     {
-      RunScratch scratch(longest);
+      RunScratch scratch;
       SameBlockRun run{x, up, ctx.disc->volume.data(), bonds.reverse.data(), ctx.partial_volume_radius,
-                       break_limit, break_limit, 0, 0, scratch.neighbor.data(), scratch.intact.data(), scratch.breaking.data()};
+                       break_limit, break_limit, 0, 0, nullptr, nullptr, nullptr};
 #pragma omp for schedule(static)
       for (std::size_t i = range.begin; i < range.end; ++i) {
         find_run(bonds, blocks, i, run.b_begin, run.b_end);
         double sum = 0, lost = 0;
         if (vector_path) {
-          scratch.load(neighbors, broken, run.b_begin, run.b_end);
+          scratch.load(neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             if (fail_bonds)
               run_dilatation<Dim, Model, true, kind.value>(run, p, fields, i, sum, lost);
@@ -354,7 +343,6 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
   const bool after_force = ctx.bond_failure_after_force;
   // With protected points the failure check needs both ends' flags: the general path only.
   const bool vector_path = failure.no_fail == nullptr;
-  const std::uint64_t longest = vector_path ? longest_family(bonds) : 0;
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
     using Model = decltype(model);
@@ -362,15 +350,15 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
     const double break_limit = fail_bonds ? p.critical_stretch : infinity;
 #pragma omp parallel
     {
-      RunScratch scratch(longest);
+      RunScratch scratch;
       SameBlockRun run{x, up, ctx.disc->volume.data(), reverse, ctx.partial_volume_radius, break_limit,
-                       after_force ? infinity : break_limit, 0, 0, scratch.neighbor.data(), scratch.intact.data(), scratch.breaking.data()};
+                       after_force ? infinity : break_limit, 0, 0, nullptr, nullptr, nullptr};
 #pragma omp for schedule(static)
       for (std::size_t i = range.begin; i < range.end; ++i) {
         find_run(bonds, blocks, i, run.b_begin, run.b_end);
         double fi[3] = {0, 0, 0};
         if (vector_path) {
-          scratch.load(neighbors, broken, run.b_begin, run.b_end);
+          scratch.load(neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             if (fail_bonds)
               run_force<Dim, Model, true, kind.value>(run, p, fields, i, fi);
