@@ -199,11 +199,11 @@ int main(int argc, char** argv) {
   const double cores = static_cast<double>(o.threads) * comm.size();
   const double updates_per_s_core = bonds * o.steps / run_s / cores;
   // Bond storage: neighbour index (4 B), broken flag (1 B), CSR offsets (8 B per point); inelastic models add
-  // 8 B per history array and 4 B of partner-bond index; correspondence adds its bond weight ω × partial
-  // volume (8 B) and the partner-bond index (4 B) through which the force reads j's weight of the pair.
+  // 8 B per history array and 4 B of partner-bond index; correspondence adds its bond weight ω V_j × partial
+  // volume factor (8 B).
   const double neighbor_bytes = 4, state_bytes = 1, offset_bytes = 8 * (points + 1) / bonds;
   const int history_arrays = sim.model().bond_history_arrays();
-  const double history_bytes = history_arrays > 0 ? 8.0 * history_arrays + 4 : sim.has_correspondence() ? 12.0 : 0.0;
+  const double history_bytes = history_arrays > 0 ? 8.0 * history_arrays + 4 : sim.has_correspondence() ? 8.0 : 0.0;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double rss_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;

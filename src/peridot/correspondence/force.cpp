@@ -6,6 +6,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "peridot/core/avx512_gather.hpp"
+#include "peridot/state/bond_runs.hpp"
+
 namespace peridot::correspondence {
 
 double hourglass_stiffness(double coefficient, double bulk_modulus, double horizon) {
@@ -20,6 +23,155 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
                                   const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f) {
   compute_correspondence_force(ctx, kin, s, u, v, f, BlockRange{0, ctx.disc->num_points()});
 }
+
+namespace {
+
+/// What the vectorised force loop reads, by value (private copies: state/bond_runs.hpp says why).
+struct ForceRun {
+  const double* x;
+  const double* u;
+  const double* v;
+  const double* A;     ///< force tensors P K⁻¹, nine per point
+  const double* F;     ///< deformation gradients
+  const double* Fdot;  ///< their rates
+  double stiffness;    ///< c_hg of the run's block
+  double damping;      ///< c_hv of the run's block
+  const std::uint32_t* neighbor;  ///< the run's neighbours, padded (this thread's RunScratch)
+  const double* weight;           ///< ω V_j of each bond of the run, 0 for a broken or padding bond
+  std::uint64_t count;            ///< bonds in the padded run
+};
+
+/// The force on point i from its bonds to its own block: Σ ω V A_j ξ and Σ ω V ξ (for A_i Σ ω V ξ), and
+/// the hourglass force, each added to what the arrays hold. Within one block ω_j⟨−ξ⟩ = ω_i⟨ξ⟩ (the same
+/// influence function, horizon and partial-volume factor), c_hg and c_hv are the same at both ends, so
+/// the two ends' hourglass states add to ω (c_hg/|ξ|) (2Y − (F_i + F_j) ξ)·n n, and likewise for the
+/// dashpots; with n = Y/|Y| that is ω c_hg (2Y − (F_i + F_j) ξ)·Y Y/(|ξ| |Y|²), with no square root of |Y|².
+template <bool Hourglass, bool Damping>
+void run_force(const ForceRun& run_in, std::size_t i, double sum_Ajxi[3], double sum_xi[3], double fh[3]) {
+  // Private copies, one variable each (a copy of the whole struct stays in memory, and the loop scalar).
+  const double *const x = run_in.x, *const u = run_in.u, *const v = run_in.v;
+  const double *const A = run_in.A, *const F = run_in.F, *const Fdot = run_in.Fdot;
+  const double stiffness = run_in.stiffness, damping = run_in.damping;
+  const std::uint32_t* const neighbor = run_in.neighbor;
+  const double* const weight = run_in.weight;
+  const std::uint64_t count = run_in.count;
+  double Fi[9], Fdot_i[9];
+  for (int c = 0; c < 9; ++c) Fi[c] = F[9 * i + c], Fdot_i[c] = Damping ? Fdot[9 * i + c] : 0.0;
+  const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
+  const double ui0 = u[3 * i], ui1 = u[3 * i + 1], ui2 = u[3 * i + 2];
+  const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
+  double t0 = 0, t1 = 0, t2 = 0, m0 = 0, m1 = 0, m2 = 0, h0 = 0, h1 = 0, h2 = 0;
+#pragma omp simd reduction(+ : t0, t1, t2, m0, m1, m2, h0, h1, h2)
+  for (std::uint64_t k = 0; k < count; ++k) {
+    const std::uint32_t j = neighbor[k];
+    const double w = weight[k];
+    const double dx0 = x[3 * j] - xi0, dx1 = x[3 * j + 1] - xi1, dx2 = x[3 * j + 2] - xi2;
+    const std::uint64_t a = 9 * std::uint64_t{j};
+    t0 += w * (A[a] * dx0 + A[a + 1] * dx1 + A[a + 2] * dx2);
+    t1 += w * (A[a + 3] * dx0 + A[a + 4] * dx1 + A[a + 5] * dx2);
+    t2 += w * (A[a + 6] * dx0 + A[a + 7] * dx1 + A[a + 8] * dx2);
+    m0 += w * dx0, m1 += w * dx1, m2 += w * dx2;
+    if constexpr (Hourglass) {
+      const double y0 = dx0 + (u[3 * j] - ui0), y1 = dx1 + (u[3 * j + 1] - ui1),
+                   y2 = dx2 + (u[3 * j + 2] - ui2);
+      // (2Y − (F_i + F_j) ξ)·Y
+      const double z0 = 2 * y0 - ((Fi[0] + F[a]) * dx0 + (Fi[1] + F[a + 1]) * dx1 + (Fi[2] + F[a + 2]) * dx2);
+      const double z1 = 2 * y1 - ((Fi[3] + F[a + 3]) * dx0 + (Fi[4] + F[a + 4]) * dx1 + (Fi[5] + F[a + 5]) * dx2);
+      const double z2 = 2 * y2 - ((Fi[6] + F[a + 6]) * dx0 + (Fi[7] + F[a + 7]) * dx1 + (Fi[8] + F[a + 8]) * dx2);
+      double scalar = stiffness * (z0 * y0 + z1 * y1 + z2 * y2);
+      if constexpr (Damping) {  // (2(v_j − v_i) − (Ḟ_i + Ḟ_j) ξ)·Y
+        const double dv0 = v[3 * j] - vi0, dv1 = v[3 * j + 1] - vi1, dv2 = v[3 * j + 2] - vi2;
+        const double r0 =
+            2 * dv0 - ((Fdot_i[0] + Fdot[a]) * dx0 + (Fdot_i[1] + Fdot[a + 1]) * dx1 + (Fdot_i[2] + Fdot[a + 2]) * dx2);
+        const double r1 =
+            2 * dv1 - ((Fdot_i[3] + Fdot[a + 3]) * dx0 + (Fdot_i[4] + Fdot[a + 4]) * dx1 + (Fdot_i[5] + Fdot[a + 5]) * dx2);
+        const double r2 =
+            2 * dv2 - ((Fdot_i[6] + Fdot[a + 6]) * dx0 + (Fdot_i[7] + Fdot[a + 7]) * dx1 + (Fdot_i[8] + Fdot[a + 8]) * dx2);
+        scalar += damping * (r0 * y0 + r1 * y1 + r2 * y2);
+      }
+      const double xi_length = std::sqrt(dx0 * dx0 + dx1 * dx1 + dx2 * dx2);
+      const double y_squared = y0 * y0 + y1 * y1 + y2 * y2;
+      // A broken or padding bond (w = 0) may join coincident points: 1 in place of |Y|² keeps its 0 finite.
+      const double scale = w * scalar / (xi_length * (y_squared > 0 ? y_squared : 1.0));
+      h0 += scale * y0, h1 += scale * y1, h2 += scale * y2;
+    }
+  }
+  sum_Ajxi[0] += t0, sum_Ajxi[1] += t1, sum_Ajxi[2] += t2;
+  sum_xi[0] += m0, sum_xi[1] += m1, sum_xi[2] += m2;
+  fh[0] += h0, fh[1] += h1, fh[2] += h2;
+}
+
+#if PERIDOT_AVX512_GATHER
+PERIDOT_AVX512_BEGIN
+/// run_force with the partners' records loaded by core/avx512_gather.hpp, 8 bonds per iteration. Each
+/// bond's terms are the same operations in the same order as above (no fused multiply-add, CMakeLists.txt);
+/// only the order of the sums over the bonds differs.
+template <bool Hourglass, bool Damping>
+void run_force_avx512(const ForceRun& run, std::size_t i, double sum_Ajxi[3], double sum_xi[3], double fh[3]) {
+  // (GCC's vector arithmetic on __m512d; no fused multiply-add, CMakeLists.txt.)
+  // Σ_c (P_c + Q_c) ξ_c over one row of two tensors, in the order of the scalar loop.
+  const auto row = [](const __m512d* P, const __m512d* Q, const __m512d* dx) {
+    return (P[0] + Q[0]) * dx[0] + (P[1] + Q[1]) * dx[1] + (P[2] + Q[2]) * dx[2];
+  };
+  __m512d x_i[3], u_i[3], v_i[3], F_i[9], Fdot_i[9];
+  for (int d = 0; d < 3; ++d)
+    x_i[d] = _mm512_set1_pd(run.x[3 * i + d]), u_i[d] = _mm512_set1_pd(run.u[3 * i + d]),
+    v_i[d] = _mm512_set1_pd(run.v[3 * i + d]);
+  for (int c = 0; c < 9; ++c)
+    F_i[c] = _mm512_set1_pd(run.F[9 * i + c]), Fdot_i[c] = _mm512_set1_pd(Damping ? run.Fdot[9 * i + c] : 0.0);
+  const __m512d two = _mm512_set1_pd(2.0), one = _mm512_set1_pd(1.0), zero = _mm512_setzero_pd();
+  const __m512d stiffness = _mm512_set1_pd(run.stiffness), damping = _mm512_set1_pd(run.damping);
+  __m512d t[3] = {zero, zero, zero}, m[3] = {zero, zero, zero}, h[3] = {zero, zero, zero};
+  for (std::uint64_t k = 0; k < run.count; k += 8) {
+    const std::uint32_t* j = run.neighbor + k;
+    const __m512d w = _mm512_loadu_pd(run.weight + k);
+    __m512d dx[3], a[9];
+    avx512::load_vec3(run.x, j, dx);
+    for (int d = 0; d < 3; ++d) dx[d] = dx[d] - x_i[d];
+    avx512::load_tensor(run.A, j, a);
+    for (int r = 0; r < 3; ++r)
+      t[r] += w * (a[3 * r] * dx[0] + a[3 * r + 1] * dx[1] + a[3 * r + 2] * dx[2]);
+    for (int d = 0; d < 3; ++d) m[d] += w * dx[d];
+    if constexpr (Hourglass) {
+      __m512d y[3], Fj[9], z[3];
+      avx512::load_vec3(run.u, j, y);
+      for (int d = 0; d < 3; ++d) y[d] = dx[d] + (y[d] - u_i[d]);
+      avx512::load_tensor(run.F, j, Fj);
+      for (int r = 0; r < 3; ++r) z[r] = two * y[r] - row(F_i + 3 * r, Fj + 3 * r, dx);
+      __m512d scalar = stiffness * (z[0] * y[0] + z[1] * y[1] + z[2] * y[2]);
+      if constexpr (Damping) {
+        __m512d dv[3], Gj[9], q[3];
+        avx512::load_vec3(run.v, j, dv);
+        for (int d = 0; d < 3; ++d) dv[d] = dv[d] - v_i[d];
+        avx512::load_tensor(run.Fdot, j, Gj);
+        for (int r = 0; r < 3; ++r) q[r] = two * dv[r] - row(Fdot_i + 3 * r, Gj + 3 * r, dx);
+        scalar += damping * (q[0] * y[0] + q[1] * y[1] + q[2] * y[2]);
+      }
+      const __m512d xi_length = _mm512_sqrt_pd(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+      __m512d y_squared = y[0] * y[0] + y[1] * y[1] + y[2] * y[2];
+      y_squared = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(y_squared, zero, _CMP_GT_OQ), one, y_squared);
+      const __m512d scale = w * scalar / (xi_length * y_squared);
+      for (int d = 0; d < 3; ++d) h[d] += scale * y[d];
+    }
+  }
+  for (int d = 0; d < 3; ++d)
+    sum_Ajxi[d] += _mm512_reduce_add_pd(t[d]), sum_xi[d] += _mm512_reduce_add_pd(m[d]),
+        fh[d] += _mm512_reduce_add_pd(h[d]);
+}
+PERIDOT_AVX512_END
+#endif
+
+/// The run's force: the AVX-512 loop where the build has it.
+template <bool Hourglass, bool Damping>
+void run_force_sums(const ForceRun& run, std::size_t i, double sum_Ajxi[3], double sum_xi[3], double fh[3]) {
+#if PERIDOT_AVX512_GATHER
+  run_force_avx512<Hourglass, Damping>(run, i, sum_Ajxi, sum_xi, fh);
+#else
+  run_force<Hourglass, Damping>(run, i, sum_Ajxi, sum_xi, fh);
+#endif
+}
+
+}  // namespace
 
 void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
                                   const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f,
@@ -44,7 +196,11 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
   const double* F = kin.deformation_gradient.data();
   const MirrorBonds& mirror = ctx.mirror;
   const bool mirrored = mirror.active;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel
+  {
+  RunScratch scratch;
+  ForceRun run{x, up, vp, A, F, Fdot, 0, 0, nullptr, nullptr, 0};
+#pragma omp for schedule(static)
   for (std::size_t i = range.begin; i < range.end; ++i) {
     const double* Ai = A + 9 * i;
     const double* Fi = F + 9 * i;
@@ -53,9 +209,9 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
     const double hi = damping ? ctx.hourglass_damping[disc.block[i]] : 0.0;
     double fi[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
     // One bond to a partner j at reference offset ξ with relative displacement du = u_j − u_i and velocity
-    // dv, j's force tensor Aj, F_j, Ḟ_j and block, ω_i = wi and ω_j = wj (the bond j → i), volume vj.
+    // dv, j's force tensor Aj, F_j, Ḟ_j and block, wi = ω_i V_j and wj = ω_j V_j (ω_j of the bond j → i).
     auto add_bond = [&](const double* xi, const double* du, const double* dv, const double* Aj, const double* Fj,
-                        const double* Fdot_j, std::size_t block_j, double wi, double wj, double vj) {
+                        const double* Fdot_j, std::size_t block_j, double wi, double wj) {
       // T_i⟨ξ⟩ − T_j⟨−ξ⟩ = (ω_i P_i K_i⁻¹ + ω_j P_j K_j⁻¹) ξ
       double t[3];
       for (int r = 0; r < 3; ++r)
@@ -86,18 +242,39 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
           scalar += wi * hi * rate_i + wj * hj * rate_j;
         }
         scalar /= xi_length * y_length;
-        for (int r = 0; r < 3; ++r) fh[r] += scalar * y[r] * vj;
+        for (int r = 0; r < 3; ++r) fh[r] += scalar * y[r];
       }
-      for (int r = 0; r < 3; ++r) fi[r] += t[r] * vj;
+      for (int r = 0; r < 3; ++r) fi[r] += t[r];
     };
+    // The bonds to the point's own block, vectorised.
+    std::uint64_t b_begin, b_end;
+    find_same_block_run(bonds, disc.block, i, b_begin, b_end);
+    scratch.load_weighted(bonds.neighbors.data(), bonds.broken.data(), ctx.weighted_volume.data(), b_begin, b_end);
+    run.neighbor = scratch.neighbor.data(), run.weight = scratch.intact.data(), run.count = padded_length(b_end - b_begin);
+    run.stiffness = ci, run.damping = hi;
+    {
+      double sum_Ajxi[3] = {0, 0, 0}, sum_xi[3] = {0, 0, 0};
+      if (damping)
+        run_force_sums<true, true>(run, i, sum_Ajxi, sum_xi, fh);
+      else if (hourglass)
+        run_force_sums<true, false>(run, i, sum_Ajxi, sum_xi, fh);
+      else
+        run_force_sums<false, false>(run, i, sum_Ajxi, sum_xi, fh);
+      for (int r = 0; r < 3; ++r)
+        fi[r] = Ai[3 * r] * sum_xi[0] + Ai[3 * r + 1] * sum_xi[1] + Ai[3 * r + 2] * sum_xi[2] + sum_Ajxi[r];
+    }
+    // Bonds to other correspondence blocks, one at a time.
     double xi[3], du[3], dv[3];
-    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-      if (bonds.broken[b]) continue;
+    auto other_block_bond = [&](std::uint64_t b) {
+      if (bonds.broken[b]) return;
       const std::size_t j = bonds.neighbors[b];
       bond_offsets(x, up, vp, i, j, xi, du, dv);  // dv is read only with dashpots
-      add_bond(xi, du, dv, A + 9 * j, F + 9 * j, Fdot + 9 * j, static_cast<std::size_t>(disc.block[j]),
-               ctx.bond_weight[b], ctx.bond_weight[bonds.reverse[b]], disc.volume[j]);
-    }
+      const std::size_t block_j = static_cast<std::size_t>(disc.block[j]);
+      const double wj = pair_weight(ctx, block_j, static_cast<std::size_t>(disc.block[i]), std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2])) * disc.volume[j];
+      add_bond(xi, du, dv, A + 9 * j, F + 9 * j, Fdot + 9 * j, block_j, ctx.weighted_volume[b], wj);
+    };
+    for (std::uint64_t b = bonds.offsets[i]; b < b_begin; ++b) other_block_bond(b);
+    for (std::uint64_t b = b_end; b < bonds.offsets[i + 1]; ++b) other_block_bond(b);
     if (mirrored && mirror.offsets[i] < mirror.offsets[i + 1] && mirror.planes[mirror.plane_of[i]].active) {
       // The bonds to mirror images: what they add is the plane's force on the point.
       const double before[3] = {fi[0] + fh[0], fi[1] + fh[1], fi[2] + fh[2]};
@@ -109,8 +286,8 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
         reflect_tensor(plane.normal, A + 9 * j, Aj);
         reflect_tensor(plane.normal, F + 9 * j, Fj);
         if (damping) reflect_tensor(plane.normal, Fdot + 9 * j, Fdot_j);
-        add_bond(xi, du, dv, Aj, Fj, Fdot_j, static_cast<std::size_t>(disc.block[j]), mirror.weight[b],
-                 mirror.partner_weight[b], disc.volume[j]);
+        add_bond(xi, du, dv, Aj, Fj, Fdot_j, static_cast<std::size_t>(disc.block[j]), mirror.weight[b] * disc.volume[j],
+                 mirror.partner_weight[b] * disc.volume[j]);
       }
       if (mirror_force)
         for (int r = 0; r < 3; ++r) (*mirror_force)(i, r) = fi[r] + fh[r] - before[r];
@@ -120,6 +297,7 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
     for (int r = 0; r < 3; ++r) f(i, r) = fi[r] + fh[r];
     if (hourglass_force)
       for (int r = 0; r < 3; ++r) (*hourglass_force)(i, r) = fh[r];
+  }
   }
 }
 

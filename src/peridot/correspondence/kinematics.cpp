@@ -9,7 +9,9 @@
 
 #include "peridot/core/error.hpp"
 #include "peridot/materials/material.hpp"
+#include "peridot/core/avx512_gather.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
+#include "peridot/state/bond_runs.hpp"
 
 namespace peridot::correspondence {
 
@@ -19,32 +21,29 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
   PERIDOT_REQUIRE(disc.dimension == 3, "the correspondence model is implemented in 3D only");
   const std::size_t n = disc.num_points();
   PERIDOT_REQUIRE(bonds.offsets.size() == n + 1, "bond list does not match the discretization");
-  PERIDOT_REQUIRE(bonds.reverse.size() == bonds.num_bonds(), "the correspondence gather needs build_reverse_bonds");
   CorrespondenceContext ctx;
   ctx.disc = &disc;
   ctx.bonds = &bonds;
-  const std::size_t nnz = bonds.num_bonds();
-  ctx.bond_weight.resize(nnz + bonds.partner_slots);
+  ctx.blocks = blocks;
+  ctx.partial_volume_radius = partial_volume_radius;
+  ctx.weighted_volume.resize(bonds.num_bonds());
   ctx.hourglass_stiffness.assign(blocks.size(), 0.0);
   ctx.hourglass_damping.assign(blocks.size(), 0.0);
   const auto& x = disc.x;
-  // ω⟨ξ⟩ of a bond from a point of block `own` to one of block `other`, with its partial-volume factor.
-  auto weight = [&](const BlockGeometry& own, const BlockGeometry& other, double xi) {
-    return influence(own.influence, xi, own.horizon) *
-           partial_volume_factor(xi, std::max(own.horizon, other.horizon), partial_volume_radius);
-  };
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const BlockGeometry& gi = blocks[disc.block[i]];
+  for (std::size_t i = 0; i < n; ++i)
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       const std::uint32_t j = bonds.neighbors[b];
-      const BlockGeometry& gj = blocks[disc.block[j]];
-      ctx.bond_weight[b] = weight(gi, gj, norm(x.get(j) - x.get(i)));
-      // A ghost partner's bond j → i (its slot past the rank's own bonds), as j's rank computes it.
-      if (bonds.reverse[b] >= nnz) ctx.bond_weight[bonds.reverse[b]] = weight(gj, gi, norm(x.get(i) - x.get(j)));
+      const double xi = norm(x.get(j) - x.get(i));
+      ctx.weighted_volume[b] = pair_weight(ctx, disc.block[i], disc.block[j], xi) * disc.volume[j];
     }
-  }
   return ctx;
+}
+
+double pair_weight(const CorrespondenceContext& ctx, std::size_t own, std::size_t other, double xi) {
+  const BlockGeometry& g = ctx.blocks[own];
+  return influence(g.influence, xi, g.horizon) *
+         partial_volume_factor(xi, std::max(g.horizon, ctx.blocks[other].horizon), ctx.partial_volume_radius);
 }
 
 namespace {
@@ -63,6 +62,91 @@ namespace {
       "(eq 10): {} intact bonds, λ_min/λ_max = {:.3g} < {:g}; the point needs at least three non-coplanar "
       "intact bonds",
       i, id, disc.x(i, 0), disc.x(i, 1), disc.x(i, 2), intact, ratio, ctx.min_reciprocal_condition));
+}
+
+/// What the vectorised kinematics loop reads, by value (private copies: state/bond_runs.hpp says why).
+struct KinematicsRun {
+  const double* x;
+  const double* u;
+  const double* v;
+  const std::uint32_t* neighbor;  ///< the run's neighbours, padded (this thread's RunScratch)
+  const double* weight;           ///< ω V_j of each bond of the run, 0 for a broken or padding bond
+  std::uint64_t count;            ///< bonds in the padded run
+};
+
+/// The bond sums of point i over its run: ω V ξ⊗ξ (the six components of K: 00 01 02 11 12 22),
+/// ω V (u_j − u_i)⊗ξ (H) and ω V (v_j − v_i)⊗ξ (Ṅ), each added to what the arrays hold.
+[[maybe_unused]] void run_kinematics(const KinematicsRun& run_in, std::size_t i, double K[6], double H[9], double Ndot[9]) {
+  const KinematicsRun run = run_in;
+  const double xi0 = run.x[3 * i], xi1 = run.x[3 * i + 1], xi2 = run.x[3 * i + 2];
+  const double ui0 = run.u[3 * i], ui1 = run.u[3 * i + 1], ui2 = run.u[3 * i + 2];
+  const double vi0 = run.v[3 * i], vi1 = run.v[3 * i + 1], vi2 = run.v[3 * i + 2];
+  double k00 = 0, k01 = 0, k02 = 0, k11 = 0, k12 = 0, k22 = 0;
+  double h00 = 0, h01 = 0, h02 = 0, h10 = 0, h11 = 0, h12 = 0, h20 = 0, h21 = 0, h22 = 0;
+  double n00 = 0, n01 = 0, n02 = 0, n10 = 0, n11 = 0, n12 = 0, n20 = 0, n21 = 0, n22 = 0;
+#pragma omp simd reduction(+ : k00, k01, k02, k11, k12, k22, h00, h01, h02, h10, h11, h12, h20, h21, h22, n00, \
+                               n01, n02, n10, n11, n12, n20, n21, n22)
+  for (std::uint64_t k = 0; k < run.count; ++k) {
+    const std::uint32_t j = run.neighbor[k];
+    const double w = run.weight[k];
+    const double dx0 = run.x[3 * j] - xi0, dx1 = run.x[3 * j + 1] - xi1, dx2 = run.x[3 * j + 2] - xi2;
+    const double du0 = run.u[3 * j] - ui0, du1 = run.u[3 * j + 1] - ui1, du2 = run.u[3 * j + 2] - ui2;
+    const double dv0 = run.v[3 * j] - vi0, dv1 = run.v[3 * j + 1] - vi1, dv2 = run.v[3 * j + 2] - vi2;
+    const double wx0 = w * dx0, wx1 = w * dx1, wx2 = w * dx2;
+    k00 += wx0 * dx0, k01 += wx0 * dx1, k02 += wx0 * dx2, k11 += wx1 * dx1, k12 += wx1 * dx2, k22 += wx2 * dx2;
+    h00 += du0 * wx0, h01 += du0 * wx1, h02 += du0 * wx2;
+    h10 += du1 * wx0, h11 += du1 * wx1, h12 += du1 * wx2;
+    h20 += du2 * wx0, h21 += du2 * wx1, h22 += du2 * wx2;
+    n00 += dv0 * wx0, n01 += dv0 * wx1, n02 += dv0 * wx2;
+    n10 += dv1 * wx0, n11 += dv1 * wx1, n12 += dv1 * wx2;
+    n20 += dv2 * wx0, n21 += dv2 * wx1, n22 += dv2 * wx2;
+  }
+  const double k_run[6] = {k00, k01, k02, k11, k12, k22};
+  const double h_run[9] = {h00, h01, h02, h10, h11, h12, h20, h21, h22};
+  const double n_run[9] = {n00, n01, n02, n10, n11, n12, n20, n21, n22};
+  for (int c = 0; c < 6; ++c) K[c] += k_run[c];
+  for (int c = 0; c < 9; ++c) H[c] += h_run[c], Ndot[c] += n_run[c];
+}
+
+#if PERIDOT_AVX512_GATHER
+PERIDOT_AVX512_BEGIN
+/// run_kinematics with the partners' records loaded by core/avx512_gather.hpp, 8 bonds per iteration;
+/// each bond's terms are the same operations as above, only the order of the sums over bonds differs.
+void run_kinematics_avx512(const KinematicsRun& run, std::size_t i, double K[6], double H[9], double Ndot[9]) {
+  __m512d x_i[3], u_i[3], v_i[3];
+  for (int d = 0; d < 3; ++d)
+    x_i[d] = _mm512_set1_pd(run.x[3 * i + d]), u_i[d] = _mm512_set1_pd(run.u[3 * i + d]),
+    v_i[d] = _mm512_set1_pd(run.v[3 * i + d]);
+  __m512d k[6], h[9], n[9];
+  for (int c = 0; c < 6; ++c) k[c] = _mm512_setzero_pd();
+  for (int c = 0; c < 9; ++c) h[c] = _mm512_setzero_pd(), n[c] = _mm512_setzero_pd();
+  for (std::uint64_t b = 0; b < run.count; b += 8) {
+    const std::uint32_t* j = run.neighbor + b;
+    const __m512d w = _mm512_loadu_pd(run.weight + b);
+    __m512d dx[3], du[3], dv[3], wx[3];
+    avx512::load_vec3(run.x, j, dx);
+    avx512::load_vec3(run.u, j, du);
+    avx512::load_vec3(run.v, j, dv);
+    for (int d = 0; d < 3; ++d) dx[d] = dx[d] - x_i[d], du[d] = du[d] - u_i[d], dv[d] = dv[d] - v_i[d];
+    for (int d = 0; d < 3; ++d) wx[d] = w * dx[d];
+    k[0] += wx[0] * dx[0], k[1] += wx[0] * dx[1], k[2] += wx[0] * dx[2];
+    k[3] += wx[1] * dx[1], k[4] += wx[1] * dx[2], k[5] += wx[2] * dx[2];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) h[3 * r + c] += du[r] * wx[c], n[3 * r + c] += dv[r] * wx[c];
+  }
+  for (int c = 0; c < 6; ++c) K[c] += _mm512_reduce_add_pd(k[c]);
+  for (int c = 0; c < 9; ++c) H[c] += _mm512_reduce_add_pd(h[c]), Ndot[c] += _mm512_reduce_add_pd(n[c]);
+}
+PERIDOT_AVX512_END
+#endif
+
+/// The run's sums: the AVX-512 loop where the build has it.
+inline void run_kinematics_sums(const KinematicsRun& run, std::size_t i, double K[6], double H[9], double Ndot[9]) {
+#if PERIDOT_AVX512_GATHER
+  run_kinematics_avx512(run, i, K, H, Ndot);
+#else
+  run_kinematics(run, i, K, H, Ndot);
+#endif
 }
 
 }  // namespace
@@ -90,48 +174,64 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
   std::size_t first_bad = std::numeric_limits<std::size_t>::max();
   const MirrorBonds& mirror = ctx.mirror;
   const bool mirrored = mirror.active;
-#pragma omp parallel for schedule(static) reduction(min : first_bad)
-  for (std::size_t i = range.begin; i < range.end; ++i) {
-    double K[9] = {}, N[9] = {}, Ndot[9] = {};
-    // One bond of weight w (ω V_j) to a partner at reference offset ξ, relative displacement and velocity.
-    auto add_bond = [&](double w, const double* xi, const double* du, const double* dv) {
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) {
-          const double y = xi[r] + du[r];
-          K[3 * r + c] += w * xi[r] * xi[c];
-          N[3 * r + c] += w * y * xi[c];
-          Ndot[3 * r + c] += w * dv[r] * xi[c];
+#pragma omp parallel reduction(min : first_bad)
+  {
+    RunScratch scratch;
+    KinematicsRun run{x, up, vp, nullptr, nullptr, 0};
+#pragma omp for schedule(static)
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      // K (six components, symmetric), H = Σ ω V (u_j − u_i)⊗ξ and Ṅ; F = (K + H) K⁻¹ = I + H K⁻¹,
+      // which keeps the digits of a small strain that N K⁻¹ with N = K + H would lose to cancellation.
+      double K[6] = {}, H[9] = {}, Ndot[9] = {};
+      std::uint64_t b_begin, b_end;
+      find_same_block_run(bonds, disc.block, i, b_begin, b_end);
+      scratch.load_weighted(bonds.neighbors.data(), bonds.broken.data(), ctx.weighted_volume.data(), b_begin, b_end);
+      run.neighbor = scratch.neighbor.data(), run.weight = scratch.intact.data(), run.count = padded_length(b_end - b_begin);
+      run_kinematics_sums(run, i, K, H, Ndot);
+      // Bonds to other correspondence blocks and to mirror images, one at a time: weight w (ω V_j), reference
+      // offset ξ, relative displacement and velocity.
+      auto add_bond = [&](double w, const double* xi, const double* du, const double* dv) {
+        const double wx[3] = {w * xi[0], w * xi[1], w * xi[2]};
+        K[0] += wx[0] * xi[0], K[1] += wx[0] * xi[1], K[2] += wx[0] * xi[2];
+        K[3] += wx[1] * xi[1], K[4] += wx[1] * xi[2], K[5] += wx[2] * xi[2];
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) H[3 * r + c] += du[r] * wx[c], Ndot[3 * r + c] += dv[r] * wx[c];
+      };
+      double xi[3], du[3], dv[3];
+      auto other_block_bond = [&](std::uint64_t b) {
+        if (bonds.broken[b]) return;
+        const std::size_t j = bonds.neighbors[b];
+        bond_offsets(x, up, vp, i, j, xi, du, dv);
+        add_bond(ctx.weighted_volume[b], xi, du, dv);
+      };
+      for (std::uint64_t b = bonds.offsets[i]; b < b_begin; ++b) other_block_bond(b);
+      for (std::uint64_t b = b_end; b < bonds.offsets[i + 1]; ++b) other_block_bond(b);
+      if (mirrored && mirror.planes[mirror.plane_of[i]].active) {
+        const MirrorPlane& plane = mirror.planes[mirror.plane_of[i]];
+        for (std::uint64_t b = mirror.offsets[i]; b < mirror.offsets[i + 1]; ++b) {
+          const std::size_t j = mirror.source[b];
+          mirror_bond_offsets(plane, x, up, vp, i, j, xi, du, dv);
+          add_bond(mirror.weight[b] * disc.volume[j], xi, du, dv);
         }
-    };
-    double xi[3], du[3], dv[3];
-    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-      if (bonds.broken[b]) continue;
-      const std::size_t j = bonds.neighbors[b];
-      bond_offsets(x, up, vp, i, j, xi, du, dv);
-      add_bond(ctx.bond_weight[b] * disc.volume[j], xi, du, dv);
-    }
-    if (mirrored && mirror.planes[mirror.plane_of[i]].active) {
-      const MirrorPlane& plane = mirror.planes[mirror.plane_of[i]];
-      for (std::uint64_t b = mirror.offsets[i]; b < mirror.offsets[i + 1]; ++b) {
-        const std::size_t j = mirror.source[b];
-        mirror_bond_offsets(plane, x, up, vp, i, j, xi, du, dv);
-        add_bond(mirror.weight[b] * disc.volume[j], xi, du, dv);
       }
+      Mat3 Km;
+      Km << K[0], K[1], K[2], K[1], K[3], K[4], K[2], K[4], K[5];
+      // K is symmetric positive semi-definite; its extreme eigenvalues measure how far it is from singular.
+      // The closed form (computeDirect) errs by about 1e-15 λ_max, far below the threshold.
+      Eigen::SelfAdjointEigenSolver<Mat3> eig;
+      eig.computeDirect(Km, Eigen::EigenvaluesOnly);
+      const double lmin = eig.eigenvalues()(0), lmax = eig.eigenvalues()(2);
+      if (!(lmax > 0) || !(lmin >= ctx.min_reciprocal_condition * lmax)) {
+        first_bad = std::min(first_bad, i);
+        continue;
+      }
+      const Mat3 Kinv = Km.inverse();
+      const Mat3 F = Mat3::Identity() + Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(H) * Kinv;
+      const Mat3 Fdot = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(Ndot) * Kinv;
+      out.shape_inverse.set(i, Kinv);
+      out.deformation_gradient.set(i, F);
+      out.deformation_gradient_rate.set(i, Fdot);
     }
-    const Mat3 Km = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(K);
-    // K is symmetric positive semi-definite; its extreme eigenvalues measure how far it is from singular.
-    const Eigen::SelfAdjointEigenSolver<Mat3> eig(Km, Eigen::EigenvaluesOnly);
-    const double lmin = eig.eigenvalues()(0), lmax = eig.eigenvalues()(2);
-    if (!(lmax > 0) || !(lmin >= ctx.min_reciprocal_condition * lmax)) {
-      first_bad = std::min(first_bad, i);
-      continue;
-    }
-    const Mat3 Kinv = Km.inverse();
-    const Mat3 F = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(N) * Kinv;
-    const Mat3 Fdot = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(Ndot) * Kinv;
-    out.shape_inverse.set(i, Kinv);
-    out.deformation_gradient.set(i, F);
-    out.deformation_gradient_rate.set(i, Fdot);
   }
   if (first_bad != std::numeric_limits<std::size_t>::max()) {
     // Recompute K of that point alone for the message.
@@ -141,7 +241,7 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
       const std::size_t j = bonds.neighbors[b];
       const Vec3d xi(x[3 * j] - x[3 * first_bad], x[3 * j + 1] - x[3 * first_bad + 1],
                      x[3 * j + 2] - x[3 * first_bad + 2]);
-      K += ctx.bond_weight[b] * disc.volume[j] * xi * xi.transpose();
+      K += ctx.weighted_volume[b] * xi * xi.transpose();
     }
     if (mirrored && mirror.planes[mirror.plane_of[first_bad]].active)
       for (std::uint64_t b = mirror.offsets[first_bad]; b < mirror.offsets[first_bad + 1]; ++b) {

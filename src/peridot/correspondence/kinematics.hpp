@@ -32,8 +32,12 @@ struct BlockGeometry {
 struct CorrespondenceContext {
   const Discretization* disc = nullptr;
   const BondList* bonds = nullptr;
-  /// Per bond i → j: ω_i(|ξ|) times the partial-volume factor (dimensionless); ω of i's block.
-  std::vector<double> bond_weight;
+  /// Per bond i → j: ω_i(|ξ|) times the partial-volume factor times V_j (m³), ω of i's block: the weight
+  /// of the bond in every sum of the kinematics and the force.
+  std::vector<double> weighted_volume;
+  /// Per block: its horizon and influence function, for ω_j of a bond to another block (pair_weight).
+  std::vector<BlockGeometry> blocks;
+  double partial_volume_radius = 0;  ///< as NeighborhoodOptions (0: no partial-volume factor)
   /// Per block: hourglass bond stiffness c_hg (N/m⁶), 0 = no control (see force.hpp).
   std::vector<double> hourglass_stiffness;
   /// Per block: hourglass bond dashpot c_hv (N s/m⁶), 0 = no damping (see force.hpp).
@@ -47,13 +51,14 @@ struct CorrespondenceContext {
 
 /// Bond weights for a discretization whose blocks are described by `blocks`
 /// (indexed by disc.block). `partial_volume_radius` as in NeighborhoodOptions (0: none); the pair horizon
-/// for the partial-volume factor is the larger of the two blocks'. Distributed, the bonds j → i of ghost
-/// partners get their weights too, in their partner-bond slots (BondList::partner_slots).
+/// for the partial-volume factor is the larger of the two blocks'.
 CorrespondenceContext make_correspondence_context(const Discretization& disc, const BondList& bonds,
                                                   const std::vector<BlockGeometry>& blocks,
                                                   double partial_volume_radius = 0);
-// The gather reads j's weight of the same pair through BondList::reverse (neighbor/build_reverse_bonds),
-// which must be filled before the context is made.
+
+/// ω⟨ξ⟩ of a bond of length xi from a point of block `own` to one of block `other`, with its partial-volume
+/// factor (dimensionless): the weight of weighted_volume, and of the state of the bond's other end.
+double pair_weight(const CorrespondenceContext& ctx, std::size_t own, std::size_t other, double xi);
 
 /// Per-point kinematic fields.
 struct KinematicFields {

@@ -7,6 +7,7 @@
 #include "peridot/core/error.hpp"
 #include "peridot/damage/critical_stretch.hpp"
 #include "peridot/solvers/bond_loop.hpp"
+#include "peridot/state/bond_runs.hpp"
 
 namespace peridot {
 
@@ -96,12 +97,7 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
 namespace {
 
 /// The bonds of point i to its own block, [b_begin, b_end), for the vectorised loops below, with what
-/// they read and write by value: GCC 12 vectorises these loops only when they read private copies (read
-/// through a lambda's references or a struct the OpenMP threads share, every pointer is reloaded after
-/// each store, and the loop stays scalar although -fopt-info reports it vectorised). The neighbours and
-/// broken flags (bytes) are copied to and from a thread's scratch around the loop: with a byte array in
-/// it, GCC either refuses (mask conversions it cannot do for 256-bit vectors) or takes 32 bonds per
-/// iteration, which leaves a quarter of a 122-bond family to the scalar remainder.
+/// they read and write by value (private copies: state/bond_runs.hpp says why).
 struct SameBlockRun {
   const double* x;
   const double* u;
@@ -118,35 +114,11 @@ struct SameBlockRun {
   double* breaking;               ///< per bond of the run: set to 1 where it breaks now, else 0
 };
 
-/// Models without per-bond history run the vectorised loops over a multiple of this many bonds: the
-/// bonds past the run repeat its last neighbour with intact = 0, so they add nothing, and no bond is left
-/// to the scalar remainder loop (GCC 12 takes 16 bonds per iteration here; a 122-bond family would leave
-/// 10 to it, a third of the time). Models with history read it at the bond, so they are not padded.
-constexpr std::uint64_t run_padding = 16;
-inline std::uint64_t padded_length(std::uint64_t n) { return (n + run_padding - 1) / run_padding * run_padding; }
-
-/// The per-thread scratch of the vectorised loops: one family's neighbours, intact flags (1 intact,
-/// 0 broken) and breaking flags (1 where the bond breaks now), padded; it grows to the longest family.
-struct RunScratch {
-  std::vector<std::uint32_t> neighbor;
-  std::vector<double> intact, breaking;
-  /// Copies the run's neighbours and flags in and points `run` at them.
-  void load(const std::uint32_t* neighbors, const std::uint8_t* broken, SameBlockRun& run) {
-    const std::uint64_t b_begin = run.b_begin, b_end = run.b_end, n = b_end - b_begin;
-    if (neighbor.size() < padded_length(n))
-      neighbor.resize(padded_length(n)), intact.resize(padded_length(n)), breaking.resize(padded_length(n));
-    run.neighbor = neighbor.data(), run.intact = intact.data(), run.breaking = breaking.data();
-    std::copy(neighbors + b_begin, neighbors + b_end, neighbor.begin());
-    double* flags = intact.data();
-    const std::uint8_t* from = broken + b_begin;
-    for (std::uint64_t k = 0; k < n; ++k) flags[k] = 1 - from[k];  // flags are 0 or 1; arithmetic vectorises
-    for (std::uint64_t k = n; k < padded_length(n); ++k) neighbor[k] = n > 0 ? neighbor[n - 1] : 0, flags[k] = 0;
-  }
-  void store(std::uint8_t* broken, std::uint64_t b_begin, std::uint64_t b_end) const {
-    for (std::uint64_t b = b_begin; b < b_end; ++b)
-      if (breaking[b - b_begin] != 0) broken[b] = 1;
-  }
-};
+/// Copies the run's neighbours and flags to `scratch` and points `run` at them.
+inline void load_run(RunScratch& scratch, const std::uint32_t* neighbors, const std::uint8_t* broken, SameBlockRun& run) {
+  scratch.load(neighbors, broken, run.b_begin, run.b_end);
+  run.neighbor = scratch.neighbor.data(), run.intact = scratch.intact.data(), run.breaking = scratch.breaking.data();
+}
 
 /// Deformed bond Y = (dy0, dy1, dy2), |ξ| and |Y| of the bond to j, written out per component into the
 /// caller's registers: with an inner loop over Dim, or a struct returned (bond_geometry in bond_loop.hpp),
@@ -236,18 +208,6 @@ inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, co
   f[0] = fx, f[1] = fy, f[2] = fz;
 }
 
-/// Point i's run of bonds to its own block. Neighbours are sorted by global index, and every block is a
-/// contiguous global index range, so the bonds to this block form one run [b_begin, b_end) between the
-/// bonds to lower and to higher blocks. (Found by block, not index: a rank's ghosts sit after its owned
-/// points.) Bonds to other blocks (interfaces only) take the general path.
-inline void find_run(const BondList& bonds, const std::vector<std::int32_t>& blocks, std::size_t i,
-                     std::uint64_t& b_begin, std::uint64_t& b_end) {
-  const std::int32_t block_i = blocks[i];
-  b_begin = bonds.offsets[i], b_end = bonds.offsets[i + 1];
-  while (b_begin < b_end && blocks[bonds.neighbors[b_begin]] < block_i) ++b_begin;
-  while (b_end > b_begin && blocks[bonds.neighbors[b_end - 1]] > block_i) --b_end;
-}
-
 }  // namespace
 
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
@@ -276,10 +236,10 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
                        break_limit, break_limit, 0, 0, nullptr, nullptr, nullptr};
 #pragma omp for schedule(static)
       for (std::size_t i = range.begin; i < range.end; ++i) {
-        find_run(bonds, blocks, i, run.b_begin, run.b_end);
+        find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
         double sum = 0, lost = 0;
         if (vector_path) {
-          scratch.load(neighbors, broken, run);
+          load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             if (fail_bonds)
               run_dilatation<Dim, Model, true, kind.value>(run, p, fields, i, sum, lost);
@@ -355,10 +315,10 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
                        after_force ? infinity : break_limit, 0, 0, nullptr, nullptr, nullptr};
 #pragma omp for schedule(static)
       for (std::size_t i = range.begin; i < range.end; ++i) {
-        find_run(bonds, blocks, i, run.b_begin, run.b_end);
+        find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
         double fi[3] = {0, 0, 0};
         if (vector_path) {
-          scratch.load(neighbors, broken, run);
+          load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             if (fail_bonds)
               run_force<Dim, Model, true, kind.value>(run, p, fields, i, fi);

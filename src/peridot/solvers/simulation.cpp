@@ -55,11 +55,8 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
         if (set.name == name)
           for (std::uint32_t i : set.points) no_fail[i] = 1;
   };
-  // The partner bond j → i: inelastic models read its history, the correspondence gather its weight.
-  const bool needs_partner_bonds =
-      model_.bond_history_arrays() > 0 ||
-      std::any_of(model_.params.begin(), model_.params.end(),
-                  [](const MaterialParams& p) { return p.model == ModelKind::correspondence; });
+  // The partner bond j → i: the inelastic models read its history.
+  const bool needs_partner_bonds = model_.bond_history_arrays() > 0;
   if (comm_.serial()) {
     disc_ = std::move(global);
     node_sets_ = build_node_sets(problem_, disc_);

@@ -1,0 +1,73 @@
+#pragma once
+// Loads of one small record per lane for 8 bonds at once, from point-major arrays, as AVX-512 vectors with
+// one record component each: a 3-vector (x, u, v: 3 doubles per point) or a 3×3 tensor (9 per point).
+//
+// Why not gathers: the correspondence bond loops read 6–24 doubles of each partner j. GCC's gathers cost
+// about 0.42 ns per element on the Sapphire Rapids VM of bench/README.md; eight plain loads of each record
+// and a transpose in registers cost 0.24 ns per element (a stand-alone loop of 9-double records, the
+// measurement quoted there). Only built where the compiler targets AVX-512 (-march=native on such a
+// machine); elsewhere the loops stay the compiler's.
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__) && !defined(PERIDOT_NO_AVX512)
+#define PERIDOT_AVX512_GATHER 1
+#include <immintrin.h>
+
+#include <cstdint>
+
+// GCC 12's intrinsics leave the unused part of an unmasked result "undefined" through a self-initialised
+// variable, which -Wmaybe-uninitialized reports at every use (GCC bug 105593); the code between these
+// two is written with intrinsics only.
+#define PERIDOT_AVX512_BEGIN                                         \
+  _Pragma("GCC diagnostic push") _Pragma("GCC diagnostic ignored \"-Wmaybe-uninitialized\"") \
+      _Pragma("GCC diagnostic ignored \"-Wuninitialized\"")
+#define PERIDOT_AVX512_END _Pragma("GCC diagnostic pop")
+
+PERIDOT_AVX512_BEGIN
+namespace peridot::avx512 {
+
+/// out[c] lane k = base[3 j_k + c], c < 3, for the 8 indices of `j`. The fourth double of each load is
+/// masked off, so the last point's record is read without running past the array.
+[[gnu::always_inline]] inline void load_vec3(const double* base, const std::uint32_t* j, __m512d out[3]) {
+  __m256d r[8];
+  for (int k = 0; k < 8; ++k) r[k] = _mm256_maskz_loadu_pd(0x7, base + 3 * static_cast<std::uint64_t>(j[k]));
+  // t_k = [r_k | r_{k+4}]: each 256-bit half is transposed as a 4×4 block.
+  const __m512d t0 = _mm512_insertf64x4(_mm512_zextpd256_pd512(r[0]), r[4], 1);
+  const __m512d t1 = _mm512_insertf64x4(_mm512_zextpd256_pd512(r[1]), r[5], 1);
+  const __m512d t2 = _mm512_insertf64x4(_mm512_zextpd256_pd512(r[2]), r[6], 1);
+  const __m512d t3 = _mm512_insertf64x4(_mm512_zextpd256_pd512(r[3]), r[7], 1);
+  const __m512d lo01 = _mm512_unpacklo_pd(t0, t1), hi01 = _mm512_unpackhi_pd(t0, t1);  // x0 x1 z0 z1 | …
+  const __m512d lo23 = _mm512_unpacklo_pd(t2, t3), hi23 = _mm512_unpackhi_pd(t2, t3);
+  const __m512i first = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13), second = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  out[0] = _mm512_permutex2var_pd(lo01, first, lo23);
+  out[1] = _mm512_permutex2var_pd(hi01, first, hi23);
+  out[2] = _mm512_permutex2var_pd(lo01, second, lo23);
+}
+
+/// out[c] lane k = base[9 j_k + c], c < 9, for the 8 indices of `j` (row-major 3×3 tensors): an 8×8
+/// transpose of the first eight components and one gather of the ninth.
+[[gnu::always_inline]] inline void load_tensor(const double* base, const std::uint32_t* j, __m512d out[9]) {
+  __m512d r[8];
+  for (int k = 0; k < 8; ++k) r[k] = _mm512_loadu_pd(base + 9 * static_cast<std::uint64_t>(j[k]));
+  __m512d a[8], b[8];
+  for (int k = 0; k < 8; k += 2) a[k] = _mm512_unpacklo_pd(r[k], r[k + 1]), a[k + 1] = _mm512_unpackhi_pd(r[k], r[k + 1]);
+  // a[0] = r0_0 r1_0 r0_2 r1_2 r0_4 r1_4 r0_6 r1_6, a[1] the odd components; a[2], a[3] for rows 2, 3 …
+  for (int k = 0; k < 8; k += 4)
+    for (int p = 0; p < 2; ++p) {
+      b[k + p] = _mm512_shuffle_f64x2(a[k + p], a[k + 2 + p], 0x88);      // 128-bit lanes 0, 2 of each
+      b[k + 2 + p] = _mm512_shuffle_f64x2(a[k + p], a[k + 2 + p], 0xdd);  // lanes 1, 3
+    }
+  // b[0] = r0_0 r1_0 r0_4 r1_4 r2_0 r3_0 r2_4 r3_4 …: one more exchange of 128-bit lanes across the halves.
+  const __m512i low = _mm512_setr_epi64(0, 1, 4, 5, 8, 9, 12, 13), high = _mm512_setr_epi64(2, 3, 6, 7, 10, 11, 14, 15);
+  // Components c = 0, 4 from b[0] and b[4] (even), 1, 5 from b[1], b[5], 2, 6 from b[2], b[6], 3, 7 from b[3], b[7].
+  for (int p = 0; p < 4; ++p) {
+    out[p] = _mm512_permutex2var_pd(b[p], low, b[p + 4]);
+    out[p + 4] = _mm512_permutex2var_pd(b[p], high, b[p + 4]);
+  }
+  const __m256i jj = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(j));
+  const __m512i index = _mm512_add_epi64(_mm512_mullo_epi64(_mm512_cvtepu32_epi64(jj), _mm512_set1_epi64(9)),
+                                         _mm512_set1_epi64(8));
+  out[8] = _mm512_i64gather_pd(index, base, 8);
+}
+
+}  // namespace peridot::avx512
+PERIDOT_AVX512_END
+#endif

@@ -1,0 +1,85 @@
+#pragma once
+// What the vectorised bond loops (solvers/internal_force.cpp, correspondence/kinematics.cpp and force.cpp)
+// share: a point's run of bonds to its own block, and the per-thread scratch that holds the run's
+// neighbours and flags as doubles.
+//
+// Why the scratch: GCC 12 vectorises a bond loop only when it reads private copies and no byte array.
+// Read through a lambda's references or a struct the OpenMP threads share, every pointer is reloaded after
+// each store, and the loop stays scalar although -fopt-info reports it vectorised; with the broken flags
+// (bytes) in it, GCC either refuses (mask conversions it cannot do for 256-bit vectors) or takes 32 bonds
+// per iteration, which leaves a quarter of a 122-bond family to the scalar remainder.
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+/// Point i's run of bonds to its own block, [b_begin, b_end). Neighbours are sorted by global index, and
+/// every block is a contiguous global index range, so the bonds to this block form one run between the
+/// bonds to lower and to higher blocks. (Found by block, not index: a rank's ghosts sit after its owned
+/// points.) Bonds to other blocks (interfaces only) are the callers' general path.
+inline void find_same_block_run(const BondList& bonds, const std::vector<std::int32_t>& blocks, std::size_t i,
+                                std::uint64_t& b_begin, std::uint64_t& b_end) {
+  const std::int32_t block_i = blocks[i];
+  b_begin = bonds.offsets[i], b_end = bonds.offsets[i + 1];
+  while (b_begin < b_end && blocks[bonds.neighbors[b_begin]] < block_i) ++b_begin;
+  while (b_end > b_begin && blocks[bonds.neighbors[b_end - 1]] > block_i) --b_end;
+}
+
+/// Loops over a padded run take a multiple of this many bonds: the bonds past the run repeat its last
+/// neighbour with weight or intact flag 0, so they add nothing (an empty run has none), and no
+/// bond is left to the scalar remainder loop (GCC 12 takes 16 bonds per iteration at 512 bits; a 122-bond
+/// family would leave 10 to it, a third of the time). Loops that read per-bond arrays at the bond index
+/// are not padded.
+constexpr std::uint64_t run_padding = 16;
+inline std::uint64_t padded_length(std::uint64_t n) { return (n + run_padding - 1) / run_padding * run_padding; }
+
+/// One thread's copy of one run: neighbours, intact flags (1 intact, 0 broken) or intact × a per-bond
+/// weight, and breaking flags (1 where the bond breaks now), padded; it grows to the longest run.
+struct RunScratch {
+  std::vector<std::uint32_t> neighbor;
+  std::vector<double> intact, breaking;
+
+  /// Copies the neighbours and intact flags of the bonds [b_begin, b_end).
+  void load(const std::uint32_t* neighbors, const std::uint8_t* broken, std::uint64_t b_begin,
+            std::uint64_t b_end) {
+    const std::uint64_t n = b_end - b_begin;
+    fit(padded_length(n));
+    std::copy(neighbors + b_begin, neighbors + b_end, neighbor.begin());
+    double* flags = intact.data();
+    const std::uint8_t* from = broken + b_begin;
+    for (std::uint64_t k = 0; k < n; ++k) flags[k] = 1 - from[k];  // flags are 0 or 1; arithmetic vectorises
+    pad(n);
+  }
+  /// The same with intact[k] = weight[b] for an intact bond b and 0 for a broken one.
+  void load_weighted(const std::uint32_t* neighbors, const std::uint8_t* broken, const double* weight,
+                     std::uint64_t b_begin, std::uint64_t b_end) {
+    const std::uint64_t n = b_end - b_begin;
+    fit(padded_length(n));
+    std::copy(neighbors + b_begin, neighbors + b_end, neighbor.begin());
+    double* weighted = intact.data();
+    const std::uint8_t* from = broken + b_begin;
+    const double* w = weight + b_begin;
+    for (std::uint64_t k = 0; k < n; ++k) weighted[k] = from[k] ? 0.0 : w[k];
+    pad(n);
+  }
+  /// Sets the broken flag of every bond of [b_begin, b_end) whose breaking flag is set.
+  void store(std::uint8_t* broken, std::uint64_t b_begin, std::uint64_t b_end) const {
+    for (std::uint64_t b = b_begin; b < b_end; ++b)
+      if (breaking[b - b_begin] != 0) broken[b] = 1;
+  }
+
+ private:
+  void fit(std::uint64_t length) {
+    if (neighbor.size() < length) neighbor.resize(length), intact.resize(length), breaking.resize(length);
+  }
+  void pad(std::uint64_t n) {
+    std::uint32_t* to = neighbor.data();  // local pointers: through `this` both are reloaded after each store
+    double* flags = intact.data();
+    for (std::uint64_t k = n; k < padded_length(n); ++k) to[k] = to[n - 1], flags[k] = 0;
+  }
+};
+
+}  // namespace peridot
