@@ -7,10 +7,12 @@
 // and a transpose in registers cost 0.24 ns per element (a stand-alone loop of 9-double records, the
 // measurement quoted there). Only built where the compiler targets AVX-512 (-march=native on such a
 // machine); elsewhere the loops stay the compiler's.
-#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__) && !defined(PERIDOT_NO_AVX512)
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__) && defined(__AVX512BW__) && \
+    !defined(PERIDOT_NO_AVX512)
 #define PERIDOT_AVX512_GATHER 1
 #include <immintrin.h>
 
+#include <algorithm>
 #include <cstdint>
 
 // GCC 12's intrinsics leave the unused part of an unmasked result "undefined" through a self-initialised
@@ -23,6 +25,25 @@
 
 PERIDOT_AVX512_BEGIN
 namespace peridot::avx512 {
+
+/// The weights of the bonds b … b+7 of a run of `count` bonds (b < count): weight[b + k], or 0 where the
+/// bond is broken (broken[b + k] ≠ 0) or past the run; nothing past the run is read. `j` is pointed at
+/// their neighbour indices: the run's own, or for a last partial group `tail`, which repeats the run's
+/// last neighbour in the lanes past it (a weight of 0 times that partner's finite record adds nothing).
+[[gnu::always_inline]] inline __m512d load_group(const std::uint32_t* neighbor, const std::uint8_t* broken,
+                                                 const double* weight, std::uint64_t b, std::uint64_t count,
+                                                 std::uint32_t tail[8], const std::uint32_t*& j) {
+  const std::uint64_t left = count - b;
+  const __mmask8 lanes = left >= 8 ? 0xff : static_cast<__mmask8>((1u << left) - 1);
+  j = neighbor + b;
+  if (left < 8) {
+    for (std::uint64_t k = 0; k < 8; ++k) tail[k] = neighbor[b + std::min(k, left - 1)];
+    j = tail;
+  }
+  const __m128i flags = _mm_maskz_loadu_epi8(lanes, broken + b);
+  const __mmask8 intact = lanes & static_cast<__mmask8>(_mm_testn_epi8_mask(flags, flags));
+  return _mm512_maskz_loadu_pd(intact, weight + b);
+}
 
 /// out[c] lane k = base[3 j_k + c], c < 3, for the 8 indices of `j`. The fourth double of each load is
 /// masked off, so the last point's record is read without running past the array.

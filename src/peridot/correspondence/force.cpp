@@ -36,9 +36,7 @@ struct ForceRun {
   const double* Fdot;  ///< their rates
   double stiffness;    ///< c_hg of the run's block
   double damping;      ///< c_hv of the run's block
-  const std::uint32_t* neighbor;  ///< the run's neighbours, padded (this thread's RunScratch)
-  const double* weight;           ///< ω V_j of each bond of the run, 0 for a broken or padding bond
-  std::uint64_t count;            ///< bonds in the padded run
+  WeightedRun bonds;   ///< the run, weights ω V_j (state/bond_runs.hpp)
 };
 
 /// The force on point i from its bonds to its own block: Σ ω V A_j ξ and Σ ω V ξ (for A_i Σ ω V ξ), and
@@ -52,9 +50,9 @@ void run_force(const ForceRun& run_in, std::size_t i, double sum_Ajxi[3], double
   const double *const x = run_in.x, *const u = run_in.u, *const v = run_in.v;
   const double *const A = run_in.A, *const F = run_in.F, *const Fdot = run_in.Fdot;
   const double stiffness = run_in.stiffness, damping = run_in.damping;
-  const std::uint32_t* const neighbor = run_in.neighbor;
-  const double* const weight = run_in.weight;
-  const std::uint64_t count = run_in.count;
+  const std::uint32_t* const neighbor = run_in.bonds.neighbor;
+  const double* const weight = run_in.bonds.weight;
+  const std::uint64_t count = run_in.bonds.count;
   double Fi[9], Fdot_i[9];
   for (int c = 0; c < 9; ++c) Fi[c] = F[9 * i + c], Fdot_i[c] = Damping ? Fdot[9 * i + c] : 0.0;
   const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
@@ -122,9 +120,11 @@ void run_force_avx512(const ForceRun& run, std::size_t i, double sum_Ajxi[3], do
   const __m512d two = _mm512_set1_pd(2.0), one = _mm512_set1_pd(1.0), zero = _mm512_setzero_pd();
   const __m512d stiffness = _mm512_set1_pd(run.stiffness), damping = _mm512_set1_pd(run.damping);
   __m512d t[3] = {zero, zero, zero}, m[3] = {zero, zero, zero}, h[3] = {zero, zero, zero};
-  for (std::uint64_t k = 0; k < run.count; k += 8) {
-    const std::uint32_t* j = run.neighbor + k;
-    const __m512d w = _mm512_loadu_pd(run.weight + k);
+  const WeightedRun bonds = run.bonds;
+  std::uint32_t tail[8];
+  for (std::uint64_t k = 0; k < bonds.count; k += 8) {
+    const std::uint32_t* j;
+    const __m512d w = avx512::load_group(bonds.neighbor, bonds.broken, bonds.weight, k, bonds.count, tail, j);
     __m512d dx[3], a[9];
     avx512::load_vec3(run.x, j, dx);
     for (int d = 0; d < 3; ++d) dx[d] = dx[d] - x_i[d];
@@ -199,7 +199,7 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
 #pragma omp parallel
   {
   RunScratch scratch;
-  ForceRun run{x, up, vp, A, F, Fdot, 0, 0, nullptr, nullptr, 0};
+  ForceRun run{x, up, vp, A, F, Fdot, 0, 0, {}};
 #pragma omp for schedule(static)
   for (std::size_t i = range.begin; i < range.end; ++i) {
     const double* Ai = A + 9 * i;
@@ -249,8 +249,7 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
     // The bonds to the point's own block, vectorised.
     std::uint64_t b_begin, b_end;
     find_same_block_run(bonds, disc.block, i, b_begin, b_end);
-    scratch.load_weighted(bonds.neighbors.data(), bonds.broken.data(), ctx.weighted_volume.data(), b_begin, b_end);
-    run.neighbor = scratch.neighbor.data(), run.weight = scratch.intact.data(), run.count = padded_length(b_end - b_begin);
+    run.bonds = weighted_run(scratch, bonds, ctx.weighted_volume.data(), b_begin, b_end);
     run.stiffness = ci, run.damping = hi;
     {
       double sum_Ajxi[3] = {0, 0, 0}, sum_xi[3] = {0, 0, 0};

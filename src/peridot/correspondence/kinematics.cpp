@@ -69,9 +69,7 @@ struct KinematicsRun {
   const double* x;
   const double* u;
   const double* v;
-  const std::uint32_t* neighbor;  ///< the run's neighbours, padded (this thread's RunScratch)
-  const double* weight;           ///< ω V_j of each bond of the run, 0 for a broken or padding bond
-  std::uint64_t count;            ///< bonds in the padded run
+  WeightedRun bonds;  ///< the run, weights ω V_j (state/bond_runs.hpp)
 };
 
 /// The bond sums of point i over its run: ω V ξ⊗ξ (the six components of K: 00 01 02 11 12 22),
@@ -81,14 +79,17 @@ struct KinematicsRun {
   const double xi0 = run.x[3 * i], xi1 = run.x[3 * i + 1], xi2 = run.x[3 * i + 2];
   const double ui0 = run.u[3 * i], ui1 = run.u[3 * i + 1], ui2 = run.u[3 * i + 2];
   const double vi0 = run.v[3 * i], vi1 = run.v[3 * i + 1], vi2 = run.v[3 * i + 2];
+  const std::uint32_t* const neighbor = run.bonds.neighbor;
+  const double* const weight = run.bonds.weight;
+  const std::uint64_t count = run.bonds.count;
   double k00 = 0, k01 = 0, k02 = 0, k11 = 0, k12 = 0, k22 = 0;
   double h00 = 0, h01 = 0, h02 = 0, h10 = 0, h11 = 0, h12 = 0, h20 = 0, h21 = 0, h22 = 0;
   double n00 = 0, n01 = 0, n02 = 0, n10 = 0, n11 = 0, n12 = 0, n20 = 0, n21 = 0, n22 = 0;
 #pragma omp simd reduction(+ : k00, k01, k02, k11, k12, k22, h00, h01, h02, h10, h11, h12, h20, h21, h22, n00, \
                                n01, n02, n10, n11, n12, n20, n21, n22)
-  for (std::uint64_t k = 0; k < run.count; ++k) {
-    const std::uint32_t j = run.neighbor[k];
-    const double w = run.weight[k];
+  for (std::uint64_t k = 0; k < count; ++k) {
+    const std::uint32_t j = neighbor[k];
+    const double w = weight[k];
     const double dx0 = run.x[3 * j] - xi0, dx1 = run.x[3 * j + 1] - xi1, dx2 = run.x[3 * j + 2] - xi2;
     const double du0 = run.u[3 * j] - ui0, du1 = run.u[3 * j + 1] - ui1, du2 = run.u[3 * j + 2] - ui2;
     const double dv0 = run.v[3 * j] - vi0, dv1 = run.v[3 * j + 1] - vi1, dv2 = run.v[3 * j + 2] - vi2;
@@ -120,9 +121,11 @@ void run_kinematics_avx512(const KinematicsRun& run, std::size_t i, double K[6],
   __m512d k[6], h[9], n[9];
   for (int c = 0; c < 6; ++c) k[c] = _mm512_setzero_pd();
   for (int c = 0; c < 9; ++c) h[c] = _mm512_setzero_pd(), n[c] = _mm512_setzero_pd();
-  for (std::uint64_t b = 0; b < run.count; b += 8) {
-    const std::uint32_t* j = run.neighbor + b;
-    const __m512d w = _mm512_loadu_pd(run.weight + b);
+  const WeightedRun bonds = run.bonds;
+  std::uint32_t tail[8];
+  for (std::uint64_t b = 0; b < bonds.count; b += 8) {
+    const std::uint32_t* j;
+    const __m512d w = avx512::load_group(bonds.neighbor, bonds.broken, bonds.weight, b, bonds.count, tail, j);
     __m512d dx[3], du[3], dv[3], wx[3];
     avx512::load_vec3(run.x, j, dx);
     avx512::load_vec3(run.u, j, du);
@@ -177,7 +180,7 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
 #pragma omp parallel reduction(min : first_bad)
   {
     RunScratch scratch;
-    KinematicsRun run{x, up, vp, nullptr, nullptr, 0};
+    KinematicsRun run{x, up, vp, {}};
 #pragma omp for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
       // K (six components, symmetric), H = Σ ω V (u_j − u_i)⊗ξ and Ṅ; F = (K + H) K⁻¹ = I + H K⁻¹,
@@ -185,8 +188,7 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
       double K[6] = {}, H[9] = {}, Ndot[9] = {};
       std::uint64_t b_begin, b_end;
       find_same_block_run(bonds, disc.block, i, b_begin, b_end);
-      scratch.load_weighted(bonds.neighbors.data(), bonds.broken.data(), ctx.weighted_volume.data(), b_begin, b_end);
-      run.neighbor = scratch.neighbor.data(), run.weight = scratch.intact.data(), run.count = padded_length(b_end - b_begin);
+      run.bonds = weighted_run(scratch, bonds, ctx.weighted_volume.data(), b_begin, b_end);
       run_kinematics_sums(run, i, K, H, Ndot);
       // Bonds to other correspondence blocks and to mirror images, one at a time: weight w (ω V_j), reference
       // offset ξ, relative displacement and velocity.
@@ -217,13 +219,19 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
       Mat3 Km;
       Km << K[0], K[1], K[2], K[1], K[3], K[4], K[2], K[4], K[5];
       // K is symmetric positive semi-definite; its extreme eigenvalues measure how far it is from singular.
-      // The closed form (computeDirect) errs by about 1e-15 λ_max, far below the threshold.
-      Eigen::SelfAdjointEigenSolver<Mat3> eig;
-      eig.computeDirect(Km, Eigen::EigenvaluesOnly);
-      const double lmin = eig.eigenvalues()(0), lmax = eig.eigenvalues()(2);
-      if (!(lmax > 0) || !(lmin >= ctx.min_reciprocal_condition * lmax)) {
-        first_bad = std::min(first_bad, i);
-        continue;
+      // Since λ_max ≤ tr K and λ_min ≥ det K/(λ_mid λ_max) ≥ det K/(tr K)², λ_min/λ_max ≥ det K/(tr K)³:
+      // a point that passes this bound needs no eigenvalues (every point of a regular family does; K ≈
+      // (tr K/3) I gives 1/27). The others get them in closed form (computeDirect: error about
+      // 1e-15 λ_max, far below the threshold).
+      const double trace = K[0] + K[3] + K[5];
+      if (!(trace > 0 && Km.determinant() >= ctx.min_reciprocal_condition * trace * trace * trace)) {
+        Eigen::SelfAdjointEigenSolver<Mat3> eig;
+        eig.computeDirect(Km, Eigen::EigenvaluesOnly);
+        const double lmin = eig.eigenvalues()(0), lmax = eig.eigenvalues()(2);
+        if (!(lmax > 0) || !(lmin >= ctx.min_reciprocal_condition * lmax)) {
+          first_bad = std::min(first_bad, i);
+          continue;
+        }
       }
       const Mat3 Kinv = Km.inverse();
       const Mat3 F = Mat3::Identity() + Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(H) * Kinv;

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "peridot/core/avx512_gather.hpp"
 #include "peridot/state/fields.hpp"
 
 namespace peridot {
@@ -81,5 +82,28 @@ struct RunScratch {
     for (std::uint64_t k = n; k < padded_length(n); ++k) to[k] = to[n - 1], flags[k] = 0;
   }
 };
+
+/// Where a weighted loop (the correspondence kinematics and force) reads the bonds of a run. The AVX-512
+/// loops (core/avx512_gather.hpp) read the bond list in place: the run's neighbours, broken flags and
+/// weights, `count` = the run's length, the last group masked. The portable loops read this thread's
+/// RunScratch: neighbours and weights (0 where broken), `count` padded, `broken` unused.
+struct WeightedRun {
+  const std::uint32_t* neighbor = nullptr;
+  const std::uint8_t* broken = nullptr;
+  const double* weight = nullptr;
+  std::uint64_t count = 0;
+};
+
+/// The WeightedRun of the bonds [b_begin, b_end) of `bonds` with the per-bond weights `weight`.
+inline WeightedRun weighted_run(RunScratch& scratch, const BondList& bonds, const double* weight,
+                                std::uint64_t b_begin, std::uint64_t b_end) {
+#if PERIDOT_AVX512_GATHER
+  (void)scratch;
+  return {bonds.neighbors.data() + b_begin, bonds.broken.data() + b_begin, weight + b_begin, b_end - b_begin};
+#else
+  scratch.load_weighted(bonds.neighbors.data(), bonds.broken.data(), weight, b_begin, b_end);
+  return {scratch.neighbor.data(), nullptr, scratch.intact.data(), padded_length(b_end - b_begin)};
+#endif
+}
 
 }  // namespace peridot
