@@ -174,7 +174,9 @@ TEST(Neighborhood, SimpleCubicFamilyHas122BondsAndListsAreSymmetricAndSorted) {
   for (std::size_t i = 0; i < disc.num_points(); ++i) {
     most = std::max<std::size_t>(most, bonds.offsets[i + 1] - bonds.offsets[i]);
     for (auto b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-      if (b > bonds.offsets[i]) EXPECT_LT(bonds.neighbors[b - 1], bonds.neighbors[b]);
+      if (b > bonds.offsets[i]) {
+        EXPECT_LT(bonds.neighbors[b - 1], bonds.neighbors[b]);
+      }
       pairs.insert({static_cast<std::uint32_t>(i), bonds.neighbors[b]});
     }
   }
