@@ -89,6 +89,24 @@ namespace peridot::avx512 {
   out[8] = _mm512_i64gather_pd(index, base, 8);
 }
 
+/// 1/√x to about 1 ulp (2.7e-16 relative measured): the 14-bit estimate and two Newton steps
+/// y ← y (3/2 − x y²/2). 0.32 ns per element on this VM against 1.05 ns for a square root and 0.71 ns for a
+/// division, which wait for the divider (bench/README.md). x = 0 gives a NaN: callers mask such lanes.
+[[gnu::always_inline]] inline __m512d reciprocal_sqrt(__m512d x) {
+  const __m512d half_x = x * _mm512_set1_pd(0.5), three_halves = _mm512_set1_pd(1.5);
+  __m512d y = _mm512_rsqrt14_pd(x);
+  y = y * (three_halves - half_x * y * y);
+  return y * (three_halves - half_x * y * y);
+}
+
+/// 1/x to about 1 ulp: the 14-bit estimate and two Newton steps y ← y (2 − x y).
+[[gnu::always_inline]] inline __m512d reciprocal(__m512d x) {
+  const __m512d two = _mm512_set1_pd(2.0);
+  __m512d y = _mm512_rcp14_pd(x);
+  y = y * (two - x * y);
+  return y * (two - x * y);
+}
+
 }  // namespace peridot::avx512
 PERIDOT_AVX512_END
 #endif

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
+#include "peridot/core/avx512_gather.hpp"
 #include "peridot/core/error.hpp"
 #include "peridot/damage/critical_stretch.hpp"
 #include "peridot/solvers/bond_loop.hpp"
@@ -208,6 +210,68 @@ inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, co
   f[0] = fx, f[1] = fy, f[2] = fz;
 }
 
+#if PERIDOT_AVX512_GATHER
+PERIDOT_AVX512_BEGIN
+/// run_force for PMB in 3D with the partners' x and u loaded by core/avx512_gather.hpp (transposes, not
+/// gathers) and the lengths from reciprocal_sqrt (no square root or division per bond, which wait for the
+/// divider), 8 bonds per iteration, reading and writing the bond list in place. The extension is
+/// e = (|Y|² − |ξ|²)/(|Y| + |ξ|) with |Y|² − |ξ|² = η·(2ξ + η), η = u_j − u_i, which keeps the digits of a small
+/// extension that |Y| − |ξ| loses to cancellation (a bond at rest has e = 0 exactly); the portable loop's
+/// answers differ by round-off.
+template <bool CheckFailure, InfluenceKind Influence>
+void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
+                          const std::uint32_t* neighbor, std::uint8_t* broken, double f[3]) {
+  static_assert(Influence != InfluenceKind::gaussian, "the Gaussian influence takes the portable loop");
+  const std::uint64_t count = run.b_end - run.b_begin;
+  neighbor += run.b_begin, broken += run.b_begin;
+  __m512d x_i[3], u_i[3];
+  for (int d = 0; d < 3; ++d) x_i[d] = _mm512_set1_pd(run.x[3 * i + d]), u_i[d] = _mm512_set1_pd(run.u[3 * i + d]);
+  const __m512d half_c = _mm512_set1_pd(0.5 * p.micromodulus), horizon = _mm512_set1_pd(p.horizon);
+  const double r = run.partial_volume_radius;
+  const __m512d outer = _mm512_set1_pd(p.horizon + r), half_over_r = _mm512_set1_pd(r > 0 ? 0.5 / r : 0.0);
+  const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
+  const __m512d break_limit = _mm512_set1_pd(run.break_limit), drop_limit = _mm512_set1_pd(run.drop_limit);
+  __m512d fx = zero, fy = zero, fz = zero;
+  std::uint32_t tail[8];
+  for (std::uint64_t b = 0; b < count; b += 8) {
+    const std::uint64_t left = count - b;
+    const __mmask8 lanes = left >= 8 ? 0xff : static_cast<__mmask8>((1u << left) - 1);
+    const std::uint32_t* j = neighbor + b;
+    if (left < 8) {
+      for (std::uint64_t k = 0; k < 8; ++k) tail[k] = neighbor[b + std::min(k, left - 1)];
+      j = tail;
+    }
+    const __m128i flags = _mm_maskz_loadu_epi8(lanes, broken + b);
+    const __mmask8 intact = lanes & static_cast<__mmask8>(_mm_testn_epi8_mask(flags, flags));
+    __m512d dx[3], du[3], dy[3];
+    avx512::load_vec3(run.x, j, dx);
+    avx512::load_vec3(run.u, j, du);
+    for (int d = 0; d < 3; ++d) dx[d] = dx[d] - x_i[d], du[d] = du[d] - u_i[d], dy[d] = dx[d] + du[d];
+    const __m512d xi2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+    const __m512d y2 = dy[0] * dy[0] + dy[1] * dy[1] + dy[2] * dy[2];
+    const __m512d inverse_xi = avx512::reciprocal_sqrt(xi2), inverse_length = avx512::reciprocal_sqrt(y2);
+    const __m512d xi = xi2 * inverse_xi, length = y2 * inverse_length;
+    const __m512d e = length - xi;
+    const __m512d omega = Influence == InfluenceKind::inverse_distance ? horizon * inverse_xi : one;
+    const __m512d t_half = half_c * omega * e * inverse_xi;  // Pmb::force_scalar of each end
+    const __m512d t = t_half + t_half;
+    __m512d v = _mm512_i32gather_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(j)), run.volume, 8);
+    if (r > 0)  // partial_volume_factor: (δ + r − ξ)/(2r), clipped to [0, 1]
+      v = v * _mm512_min_pd(_mm512_max_pd((outer - xi) * half_over_r, zero), one);
+    const __m512d carried = t * v * inverse_length;
+    if constexpr (CheckFailure) {
+      const __mmask8 breaking = intact & _mm512_cmp_pd_mask(e, break_limit * xi, _CMP_GT_OQ);
+      _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
+    }
+    const __mmask8 carries = intact & ~_mm512_cmp_pd_mask(e, drop_limit * xi, _CMP_GT_OQ);
+    const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
+    fx += scale * dy[0], fy += scale * dy[1], fz += scale * dy[2];
+  }
+  f[0] = _mm512_reduce_add_pd(fx), f[1] = _mm512_reduce_add_pd(fy), f[2] = _mm512_reduce_add_pd(fz);
+}
+PERIDOT_AVX512_END
+#endif
+
 }  // namespace
 
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
@@ -317,7 +381,22 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
       for (std::size_t i = range.begin; i < range.end; ++i) {
         find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
         double fi[3] = {0, 0, 0};
-        if (vector_path) {
+        bool in_place = false;  // the AVX-512 PMB loop reads and writes the bond list itself
+#if PERIDOT_AVX512_GATHER
+        if constexpr (Dim == 3 && std::is_same_v<Model, Pmb>)
+          if (vector_path && p.influence != InfluenceKind::gaussian) {
+            with_influence(p.influence, [&](auto kind) {
+              if constexpr (kind.value != InfluenceKind::gaussian) {
+                if (fail_bonds)
+                  run_force_pmb_avx512<true, kind.value>(run, p, i, neighbors, broken, fi);
+                else
+                  run_force_pmb_avx512<false, kind.value>(run, p, i, neighbors, broken, fi);
+              }
+            });
+            in_place = true;
+          }
+#endif
+        if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             if (fail_bonds)
