@@ -1,12 +1,13 @@
 #pragma once
-// Loads of one small record per lane for 8 bonds at once, from point-major arrays, as AVX-512 vectors with
-// one record component each: a 3-vector (x, u, v: 3 doubles per point) or a 3×3 tensor (9 per point).
+// AVX-512 building blocks of the bond loops: loads of one small record per lane for 8 bonds at once, from
+// point-major arrays, as vectors with one record component each (a 3-vector: x, u, v, 3 doubles per point;
+// a 3×3 tensor: 9 per point), and 1/√x without the divider.
 //
-// Why not gathers: the correspondence bond loops read 6–24 doubles of each partner j. GCC's gathers cost
-// about 0.42 ns per element on the Sapphire Rapids VM of bench/README.md; eight plain loads of each record
-// and a transpose in registers cost 0.24 ns per element (a stand-alone loop of 9-double records, the
-// measurement quoted there). Only built where the compiler targets AVX-512 (-march=native on such a
-// machine); elsewhere the loops stay the compiler's.
+// Why not gathers: the correspondence bond loops read 6–24 doubles of each partner j, PMB 6. GCC's gathers
+// cost about 0.42 ns per element on the Sapphire Rapids VM of bench/README.md; eight plain loads of each
+// record and a transpose in registers cost 0.24 ns per element (a stand-alone loop of 9-double records).
+// Only built where the compiler targets AVX-512 (-march=native on such a machine); elsewhere the loops stay
+// the compiler's (and -DPERIDOT_NO_AVX512 forces that, to test them).
 #if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__) && defined(__AVX512BW__) && \
     !defined(PERIDOT_NO_AVX512)
 #define PERIDOT_AVX512_GATHER 1
@@ -97,14 +98,6 @@ namespace peridot::avx512 {
   __m512d y = _mm512_rsqrt14_pd(x);
   y = y * (three_halves - half_x * y * y);
   return y * (three_halves - half_x * y * y);
-}
-
-/// 1/x to about 1 ulp: the 14-bit estimate and two Newton steps y ← y (2 − x y).
-[[gnu::always_inline]] inline __m512d reciprocal(__m512d x) {
-  const __m512d two = _mm512_set1_pd(2.0);
-  __m512d y = _mm512_rcp14_pd(x);
-  y = y * (two - x * y);
-  return y * (two - x * y);
 }
 
 }  // namespace peridot::avx512

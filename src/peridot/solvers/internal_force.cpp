@@ -214,10 +214,11 @@ inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, co
 PERIDOT_AVX512_BEGIN
 /// run_force for PMB in 3D with the partners' x and u loaded by core/avx512_gather.hpp (transposes, not
 /// gathers) and the lengths from reciprocal_sqrt (no square root or division per bond, which wait for the
-/// divider), 8 bonds per iteration, reading and writing the bond list in place. The extension is
-/// e = (|Y|² − |ξ|²)/(|Y| + |ξ|) with |Y|² − |ξ|² = η·(2ξ + η), η = u_j − u_i, which keeps the digits of a small
-/// extension that |Y| − |ξ| loses to cancellation (a bond at rest has e = 0 exactly); the portable loop's
-/// answers differ by round-off.
+/// divider), 8 bonds per iteration, reading and writing the bond list in place. |ξ| and |Y| are within
+/// about 1 ulp of the square roots (a bond at rest still has e = |Y| − |ξ| = 0 exactly: the same operations
+/// on the same bits), so the answers differ from the portable loop's by round-off. The cancellation-free
+/// e = η·(2ξ + η)/(|Y| + |ξ|), η = u_j − u_i, cost 3–15 % of the loop in two
+/// runs and is not used.
 template <bool CheckFailure, InfluenceKind Influence>
 void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
                           const std::uint32_t* neighbor, std::uint8_t* broken, double f[3]) {
