@@ -220,7 +220,7 @@ int main(int argc, char** argv) {
       "\"ranks\": %d, \"threads\": %d, \"dt\": %.17g, \"setup_s\": %.4f, \"loop_s\": %.4f, \"loop_cpu_s\": %.4f, "
       "\"bond_updates_per_s_per_core\": %.4g, \"bond_updates_per_cpu_s\": %.4g, "
       "\"bytes_per_bond\": %.3f, \"bytes_per_bond_breakdown\": {\"neighbor_index\": %.0f, \"broken_flag\": %.0f, "
-      "\"csr_offsets\": %.3f, \"history_weight_and_partner_index\": %.0f}, \"peak_rss_mib\": %.1f, "
+      "\"csr_offsets\": %.3f, \"model_per_bond_arrays\": %.0f}, \"peak_rss_mib\": %.1f, "
       "\"communication\": {\"share_of_loop\": %.4f, \"share_of_loop_least_waiting_rank\": %.4f, \"seconds\": %.4f, "
       "\"u_exchange_s\": %.3g, \"messages_per_step_per_rank\": %.1f, "
       "\"bytes_per_step_per_rank\": %.0f, \"ghosts_per_rank\": %.0f, \"peak_rss_mib_all_ranks\": %.0f}, "
