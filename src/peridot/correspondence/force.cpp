@@ -64,6 +64,8 @@ void run_force(const ForceRun& run_in, std::size_t i, double sum_Ajxi[3], double
     const std::uint32_t j = neighbor[k];
     const double w = weight[k];
     const double dx0 = x[3 * j] - xi0, dx1 = x[3 * j + 1] - xi1, dx2 = x[3 * j + 2] - xi2;
+    // j's tensors indexed from A, F, Ḟ: through a pointer A + 9j GCC 12 finds "no vectype" and leaves the
+    // loop scalar (while reporting the lane-sum epilogue "vectorized").
     const std::uint64_t a = 9 * std::uint64_t{j};
     t0 += w * (A[a] * dx0 + A[a + 1] * dx1 + A[a + 2] * dx2);
     t1 += w * (A[a + 3] * dx0 + A[a + 4] * dx1 + A[a + 5] * dx2);
