@@ -27,13 +27,13 @@
 PERIDOT_AVX512_BEGIN
 namespace peridot::avx512 {
 
-/// The weights of the bonds b … b+7 of a run of `count` bonds (b < count): weight[b + k], or 0 where the
-/// bond is broken (broken[b + k] ≠ 0) or past the run; nothing past the run is read. `j` is pointed at
-/// their neighbour indices: the run's own, or for a last partial group `tail`, which repeats the run's
-/// last neighbour in the lanes past it (a weight of 0 times that partner's finite record adds nothing).
-[[gnu::always_inline]] inline __m512d load_group(const std::uint32_t* neighbor, const std::uint8_t* broken,
-                                                 const double* weight, std::uint64_t b, std::uint64_t count,
-                                                 std::uint32_t tail[8], const std::uint32_t*& j) {
+/// The lanes of the bonds b … b+7 of a run of `count` bonds (b < count) that are intact (broken[b + k] = 0)
+/// and inside the run; nothing past the run is read. `j` is pointed at their neighbour indices: the run's
+/// own, or for a last partial group `tail`, which repeats the run's last neighbour in the lanes past it (a
+/// masked lane reads that partner's finite record and adds nothing).
+[[gnu::always_inline]] inline __mmask8 intact_lanes(const std::uint32_t* neighbor, const std::uint8_t* broken,
+                                                    std::uint64_t b, std::uint64_t count, std::uint32_t tail[8],
+                                                    const std::uint32_t*& j) {
   const std::uint64_t left = count - b;
   const __mmask8 lanes = left >= 8 ? 0xff : static_cast<__mmask8>((1u << left) - 1);
   j = neighbor + b;
@@ -42,8 +42,14 @@ namespace peridot::avx512 {
     j = tail;
   }
   const __m128i flags = _mm_maskz_loadu_epi8(lanes, broken + b);
-  const __mmask8 intact = lanes & static_cast<__mmask8>(_mm_testn_epi8_mask(flags, flags));
-  return _mm512_maskz_loadu_pd(intact, weight + b);
+  return lanes & static_cast<__mmask8>(_mm_testn_epi8_mask(flags, flags));
+}
+
+/// weight[b + k] in the intact_lanes, 0 elsewhere.
+[[gnu::always_inline]] inline __m512d load_group(const std::uint32_t* neighbor, const std::uint8_t* broken,
+                                                 const double* weight, std::uint64_t b, std::uint64_t count,
+                                                 std::uint32_t tail[8], const std::uint32_t*& j) {
+  return _mm512_maskz_loadu_pd(intact_lanes(neighbor, broken, b, count, tail, j), weight + b);
 }
 
 /// out[c] lane k = base[3 j_k + c], c < 3, for the 8 indices of `j`. The fourth double of each load is

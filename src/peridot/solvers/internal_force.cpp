@@ -235,15 +235,8 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
   __m512d fx = zero, fy = zero, fz = zero;
   std::uint32_t tail[8];
   for (std::uint64_t b = 0; b < count; b += 8) {
-    const std::uint64_t left = count - b;
-    const __mmask8 lanes = left >= 8 ? 0xff : static_cast<__mmask8>((1u << left) - 1);
-    const std::uint32_t* j = neighbor + b;
-    if (left < 8) {
-      for (std::uint64_t k = 0; k < 8; ++k) tail[k] = neighbor[b + std::min(k, left - 1)];
-      j = tail;
-    }
-    const __m128i flags = _mm_maskz_loadu_epi8(lanes, broken + b);
-    const __mmask8 intact = lanes & static_cast<__mmask8>(_mm_testn_epi8_mask(flags, flags));
+    const std::uint32_t* j;
+    const __mmask8 intact = avx512::intact_lanes(neighbor, broken, b, count, tail, j);
     __m512d dx[3], du[3], dy[3];
     avx512::load_vec3(run.x, j, dx);
     avx512::load_vec3(run.u, j, du);
