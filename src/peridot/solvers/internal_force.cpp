@@ -218,8 +218,8 @@ PERIDOT_AVX512_BEGIN
 /// about 1 ulp of the square roots (a bond at rest still has e = |Y| − |ξ| = 0 exactly: the same operations
 /// on the same bits), so the answers differ from the portable loop's by round-off. The cancellation-free
 /// e = η·(2ξ + η)/(|Y| + |ξ|), η = u_j − u_i, cost 3–15 % of the loop in two
-/// runs and is not used.
-template <bool CheckFailure, InfluenceKind Influence>
+/// runs and is not used. Without a failure check this step break_limit is +∞, and nothing is stored.
+template <InfluenceKind Influence>
 void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
                           const std::uint32_t* neighbor, std::uint8_t* broken, double f[3]) {
   static_assert(Influence != InfluenceKind::gaussian, "the Gaussian influence takes the portable loop");
@@ -249,14 +249,14 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
     const __m512d omega = Influence == InfluenceKind::inverse_distance ? horizon * inverse_xi : one;
     const __m512d t_half = half_c * omega * e * inverse_xi;  // Pmb::force_scalar of each end
     const __m512d t = t_half + t_half;
-    __m512d v = _mm512_i32gather_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(j)), run.volume, 8);
+    // 64-bit indices: a 32-bit gather would read point indices past 2³¹ as negative.
+    const __m512i index = _mm512_cvtepu32_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(j)));
+    __m512d v = _mm512_i64gather_pd(index, run.volume, 8);
     if (r > 0)  // partial_volume_factor: (δ + r − ξ)/(2r), clipped to [0, 1]
       v = v * _mm512_min_pd(_mm512_max_pd((outer - xi) * half_over_r, zero), one);
     const __m512d carried = t * v * inverse_length;
-    if constexpr (CheckFailure) {
-      const __mmask8 breaking = intact & _mm512_cmp_pd_mask(e, break_limit * xi, _CMP_GT_OQ);
-      _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
-    }
+    const __mmask8 breaking = intact & _mm512_cmp_pd_mask(e, break_limit * xi, _CMP_GT_OQ);
+    _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
     const __mmask8 carries = intact & ~_mm512_cmp_pd_mask(e, drop_limit * xi, _CMP_GT_OQ);
     const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
     fx += scale * dy[0], fy += scale * dy[1], fz += scale * dy[2];
@@ -265,6 +265,24 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
 }
 PERIDOT_AVX512_END
 #endif
+
+/// Point i's force from its own block through the AVX-512 PMB loop, where that loop applies (3D PMB, the
+/// constant or 1/|ξ| influence); false elsewhere, and then nothing is done.
+template <int Dim, class Model>
+bool pmb_force_in_place(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
+                        const std::uint32_t* neighbors, std::uint8_t* broken, double f[3]) {
+#if PERIDOT_AVX512_GATHER
+  if constexpr (Dim == 3 && std::is_same_v<Model, Pmb>) {
+    if (p.influence == InfluenceKind::constant)
+      return run_force_pmb_avx512<InfluenceKind::constant>(run, p, i, neighbors, broken, f), true;
+    if (p.influence == InfluenceKind::inverse_distance)
+      return run_force_pmb_avx512<InfluenceKind::inverse_distance>(run, p, i, neighbors, broken, f), true;
+  }
+#else
+  (void)run, (void)p, (void)i, (void)neighbors, (void)broken, (void)f;
+#endif
+  return false;
+}
 
 }  // namespace
 
@@ -375,21 +393,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
       for (std::size_t i = range.begin; i < range.end; ++i) {
         find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
         double fi[3] = {0, 0, 0};
-        bool in_place = false;  // the AVX-512 PMB loop reads and writes the bond list itself
-#if PERIDOT_AVX512_GATHER
-        if constexpr (Dim == 3 && std::is_same_v<Model, Pmb>)
-          if (vector_path && p.influence != InfluenceKind::gaussian) {
-            with_influence(p.influence, [&](auto kind) {
-              if constexpr (kind.value != InfluenceKind::gaussian) {
-                if (fail_bonds)
-                  run_force_pmb_avx512<true, kind.value>(run, p, i, neighbors, broken, fi);
-                else
-                  run_force_pmb_avx512<false, kind.value>(run, p, i, neighbors, broken, fi);
-              }
-            });
-            in_place = true;
-          }
-#endif
+        // The AVX-512 PMB loop reads and writes the bond list itself, without the scratch.
+        const bool in_place = vector_path && pmb_force_in_place<Dim, Model>(run, p, i, neighbors, broken, fi);
         if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {

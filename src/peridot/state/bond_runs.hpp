@@ -43,43 +43,27 @@ struct RunScratch {
   std::vector<std::uint32_t> neighbor;
   std::vector<double> intact, breaking;
 
-  /// Copies the neighbours and intact flags of the bonds [b_begin, b_end).
-  void load(const std::uint32_t* neighbors, const std::uint8_t* broken, std::uint64_t b_begin,
-            std::uint64_t b_end) {
+  /// Copies the neighbours of the bonds [b_begin, b_end) and their intact flags, or with `weight` their
+  /// weights: intact[k] = weight[b] for an intact bond b, 0 for a broken one.
+  void load(const std::uint32_t* neighbors, const std::uint8_t* broken, std::uint64_t b_begin, std::uint64_t b_end,
+            const double* weight = nullptr) {
     const std::uint64_t n = b_end - b_begin;
-    fit(padded_length(n));
+    if (neighbor.size() < padded_length(n))
+      neighbor.resize(padded_length(n)), intact.resize(padded_length(n)), breaking.resize(padded_length(n));
     std::copy(neighbors + b_begin, neighbors + b_end, neighbor.begin());
+    std::uint32_t* to = neighbor.data();  // local pointers: through `this` they are reloaded after each store
     double* flags = intact.data();
     const std::uint8_t* from = broken + b_begin;
-    for (std::uint64_t k = 0; k < n; ++k) flags[k] = 1 - from[k];  // flags are 0 or 1; arithmetic vectorises
-    pad(n);
-  }
-  /// The same with intact[k] = weight[b] for an intact bond b and 0 for a broken one.
-  void load_weighted(const std::uint32_t* neighbors, const std::uint8_t* broken, const double* weight,
-                     std::uint64_t b_begin, std::uint64_t b_end) {
-    const std::uint64_t n = b_end - b_begin;
-    fit(padded_length(n));
-    std::copy(neighbors + b_begin, neighbors + b_end, neighbor.begin());
-    double* weighted = intact.data();
-    const std::uint8_t* from = broken + b_begin;
-    const double* w = weight + b_begin;
-    for (std::uint64_t k = 0; k < n; ++k) weighted[k] = from[k] ? 0.0 : w[k];
-    pad(n);
+    if (weight)
+      for (std::uint64_t k = 0; k < n; ++k) flags[k] = from[k] ? 0.0 : weight[b_begin + k];
+    else
+      for (std::uint64_t k = 0; k < n; ++k) flags[k] = 1 - from[k];  // flags are 0 or 1; arithmetic vectorises
+    for (std::uint64_t k = n; k < padded_length(n); ++k) to[k] = to[n - 1], flags[k] = 0;
   }
   /// Sets the broken flag of every bond of [b_begin, b_end) whose breaking flag is set.
   void store(std::uint8_t* broken, std::uint64_t b_begin, std::uint64_t b_end) const {
     for (std::uint64_t b = b_begin; b < b_end; ++b)
       if (breaking[b - b_begin] != 0) broken[b] = 1;
-  }
-
- private:
-  void fit(std::uint64_t length) {
-    if (neighbor.size() < length) neighbor.resize(length), intact.resize(length), breaking.resize(length);
-  }
-  void pad(std::uint64_t n) {
-    std::uint32_t* to = neighbor.data();  // local pointers: through `this` both are reloaded after each store
-    double* flags = intact.data();
-    for (std::uint64_t k = n; k < padded_length(n); ++k) to[k] = to[n - 1], flags[k] = 0;
   }
 };
 
@@ -101,7 +85,7 @@ inline WeightedRun weighted_run(RunScratch& scratch, const BondList& bonds, cons
   (void)scratch;
   return {bonds.neighbors.data() + b_begin, bonds.broken.data() + b_begin, weight + b_begin, b_end - b_begin};
 #else
-  scratch.load_weighted(bonds.neighbors.data(), bonds.broken.data(), weight, b_begin, b_end);
+  scratch.load(bonds.neighbors.data(), bonds.broken.data(), b_begin, b_end, weight);
   return {scratch.neighbor.data(), nullptr, scratch.intact.data(), padded_length(b_end - b_begin)};
 #endif
 }
