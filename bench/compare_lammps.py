@@ -9,6 +9,11 @@ answers agree (kinetic energy and displacements of every point).
 
     /usr/bin/python3 bench/compare_lammps.py [--sizes 37,37,37 58,58,60] [--models pmb lps] [--steps 200]
     /usr/bin/python3 bench/compare_lammps.py --critical-stretch 1e-3 --v0 5     # with bonds breaking
+    /usr/bin/python3 bench/compare_lammps.py --repeat 3                         # medians of 3 rounds
+
+With --repeat K each code runs K times, interleaved (Peridot, LAMMPS, LAMMPS without contact, then again),
+and the rates are the medians: on a shared VM single runs of either code vary by 10-30 %, and interleaving
+exposes both codes to the same drifts. The answers are the same bits in every round; the last is compared.
 
 With --critical-stretch both codes break bonds (s0 constant; LAMMPS α = 0). LAMMPS checks a bond after
 using its force in a step, Peridot before: Peridot runs twice, in its own order (the timed run) and in
@@ -51,6 +56,7 @@ def main():
     p.add_argument("--lmp", default="lmp")
     p.add_argument("--critical-stretch", type=float, default=None)
     p.add_argument("--v0", type=float, default=None, help="initial velocity amplitude, m/s (default as run_lammps.py)")
+    p.add_argument("--repeat", type=int, default=1, help="rounds of each run; rates are the medians")
     a = p.parse_args()
     damage = ["--critical-stretch", repr(a.critical_stretch)] if a.critical_stretch else []
     velocity = ["--v0", repr(a.v0)] if a.v0 else []
@@ -63,20 +69,25 @@ def main():
         for model in a.models:
             tag = f"{model}_{'x'.join(n)}"
             peridot_dump = os.path.join(work, tag + ".peridot")
-            pd = run_json([a.bench, "--model", model, "--n", *n, "--steps", str(a.steps), "--threads", "1",
-                           "--dt", repr(dt), "--dump", peridot_dump, *damage, *velocity])
+            peridot_runs, lammps_runs = [], ([], [])
+            for _ in range(a.repeat):
+                peridot_runs.append(run_json([a.bench, "--model", model, "--n", *n, "--steps", str(a.steps),
+                                              "--threads", "1", "--dt", repr(dt), "--dump", peridot_dump, *damage,
+                                              *velocity]))
+                for runs, extra in zip(lammps_runs, ([], ["--no-contact"])):
+                    lammps_dump = os.path.join(work, tag + ".lammps")
+                    runs.append(run_json([sys.executable, os.path.join(HERE, "lammps", "run_lammps.py"), "--model",
+                                          model, "--n", *n, "--steps", str(a.steps), "--dt", repr(dt), "--lmp", a.lmp,
+                                          "--workdir", os.path.join(work, tag + "_lmp"), "--dump", lammps_dump, *extra,
+                                          *damage, *velocity]))
             if damage:  # the same run in LAMMPS's failure order
                 run_json([a.bench, "--model", model, "--n", *n, "--steps", str(a.steps), "--threads", "1",
                           "--dt", repr(dt), "--dump", peridot_dump + ".lammps_order", *damage, *velocity,
                           "--lammps-failure-order"])
-            lammps = []
-            for extra in ([], ["--no-contact"]):
-                lammps_dump = os.path.join(work, tag + ".lammps")
-                lammps.append(run_json([sys.executable, os.path.join(HERE, "lammps", "run_lammps.py"), "--model", model,
-                                        "--n", *n, "--steps", str(a.steps), "--dt", repr(dt), "--lmp", a.lmp,
-                                        "--workdir", os.path.join(work, tag + "_lmp"), "--dump", lammps_dump, *extra,
-                                        *damage, *velocity]))
-            lm, lm_bonds_only = lammps
+            rate = "bond_updates_per_s_per_core"
+            pd, lm, lm_bonds_only = peridot_runs[-1], lammps_runs[0][-1], lammps_runs[1][-1]
+            rounds = {"peridot": [r[rate] for r in peridot_runs], "lammps": [r[rate] for r in lammps_runs[0]],
+                      "lammps_no_contact": [r[rate] for r in lammps_runs[1]]}
             P, L = load_dump(peridot_dump, False), load_dump(lammps_dump, True)
             # The answers are compared in the same failure order (LAMMPS's, with damage).
             Q = load_dump(peridot_dump + ".lammps_order", False) if damage else P
@@ -95,9 +106,8 @@ def main():
             rows.append({
                 "model": model, "points": pd["points"], "bonds": pd["directed_bonds"],
                 "same_bonds": pd["directed_bonds"] == lm["directed_bonds"],
-                "peridot": pd["bond_updates_per_s_per_core"], "lammps": lm["bond_updates_per_s_per_core"],
-                "lammps_no_contact": lm_bonds_only["bond_updates_per_s_per_core"],
-                "lammps_cpu_pct": min(lm["cpu_use_pct"], lm_bonds_only["cpu_use_pct"]),
+                **{code: float(np.median(rates)) for code, rates in rounds.items()}, "rounds": rounds,
+                "lammps_cpu_pct": min(r["cpu_use_pct"] for runs in lammps_runs for r in runs),
                 "bytes_per_bond": pd["bytes_per_bond"], "peak_rss_mib": pd["peak_rss_mib"],
                 "kinetic_energy_rel_diff": abs(ke_peridot - ke_lammps) / ke_lammps,
                 "displacement_rel_diff": displacement_error, "broken": broken})
@@ -113,6 +123,11 @@ def main():
               f"{r['kinetic_energy_rel_diff']:8.1e} {r['displacement_rel_diff']:8.1e}")
     print("bond updates per second per core; ratio = Peridot / LAMMPS; 'bonds-only' = LAMMPS without its contact "
           "pass (equal work); ΔKE, Δu = relative difference of the final kinetic energy and displacements")
+    if a.repeat > 1:
+        print(f"medians of {a.repeat} interleaved rounds; the rounds (M bond updates/s/core):")
+        for r in rows:
+            print(f"{r['model']:5} {r['points']:8.0f}: " + "; ".join(
+                f"{code} " + " ".join(f"{x / 1e6:.1f}" for x in rates) for code, rates in r["rounds"].items()))
     for r in rows:
         if r["broken"]:
             b = r["broken"]

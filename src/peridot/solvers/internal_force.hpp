@@ -29,6 +29,10 @@ struct ModelContext {
   /// lps_plastic: k = √(2ψ0)/σ_Y of every point of its blocks, from its reference family
   /// (materials/lps_plastic.hpp (C)); empty when no block is lps_plastic.
   std::vector<double> yield_norm_factor;
+  /// Per block: the volume every point of it has, owned and ghost (lattice blocks), or 0 when they
+  /// differ; set by calibrate_models. The AVX-512 PMB loop then broadcasts V_j instead of gathering it
+  /// (the same value, so the same bits). Empty: every loop gathers.
+  std::vector<double> uniform_volume;
 
   bool any_dilatation() const;
   bool any_damage() const;
@@ -37,7 +41,7 @@ struct ModelContext {
 };
 
 /// Per-point constants a model computes once from its reference families (lps_plastic's yield norm factor),
-/// after inverse_weighted_volume is set.
+/// after inverse_weighted_volume is set, and each block's uniform_volume.
 void calibrate_models(ModelContext& ctx);
 
 /// The fields the kernels read, from θ and (for inelastic models) the history.
