@@ -284,3 +284,35 @@ TEST(ModelInvariantsTwoBlocks, InterfaceConservesMomentumAndIsConsistentWithEner
 
 }  // namespace
 }  // namespace peridot
+
+namespace peridot {
+namespace {
+
+// A lattice block's points share one volume, and the PMB loop then broadcasts V_j instead of reading it
+// (ModelContext::uniform_volume): the same value, so the same bits as reading it. One point's volume
+// changed makes the block non-uniform.
+TEST(UniformVolume, BroadcastVolumeGivesTheBitsOfTheReadVolume) {
+  for (const InfluenceKind influence : {InfluenceKind::constant, InfluenceKind::inverse_distance}) {
+    Simulation sim(testing::box_problem(setup_for({"Pmb3d", 3, PlaneKind::none, ModelKind::pmb, influence})));
+    ModelContext& ctx = const_cast<ModelContext&>(sim.model());
+    const Discretization& disc = sim.discretization();
+    ASSERT_EQ(ctx.uniform_volume.size(), 1u);
+    EXPECT_EQ(ctx.uniform_volume[0], disc.volume[0]);
+    BondList& bonds = const_cast<BondList&>(sim.bonds());
+    for (std::uint64_t b = 0; b < bonds.num_bonds(); b += 7) bonds.broken[b] = 1;  // the masked lanes too
+    const VectorField u = random_displacement(disc, 2e-3 * 1e-3, 23);
+    const Forces broadcast = evaluate(sim, u);
+    ctx.uniform_volume.clear();
+    const Forces read = evaluate(sim, u);
+    ASSERT_EQ(broadcast.force_times_volume.size(), read.force_times_volume.size());
+    for (std::size_t k = 0; k < read.force_times_volume.size(); ++k)
+      ASSERT_EQ(broadcast.force_times_volume[k], read.force_times_volume[k]) << "component " << k;
+
+    const_cast<Discretization&>(disc).volume[disc.num_points() / 2] *= 1.5;
+    calibrate_models(ctx);
+    EXPECT_EQ(ctx.uniform_volume[0], 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace peridot
