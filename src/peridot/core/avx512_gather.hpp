@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 // GCC 12's intrinsics leave the unused part of an unmasked result "undefined" through a self-initialised
 // variable, which -Wmaybe-uninitialized reports at every use (GCC bug 105593); the code between these
@@ -105,6 +106,44 @@ namespace peridot::avx512 {
   y = y * (three_halves - half_x * y * y);
   return y * (three_halves - half_x * y * y);
 }
+
+/// The intact bonds of one run, for a loop that skips broken bonds (LAMMPS PERI skips them too): their
+/// neighbours and their places in the run, in the run's order, the neighbours padded to a multiple of 8
+/// with the last one (read by masked lanes only). One per thread; it grows to the longest run.
+struct IntactBonds {
+  std::vector<std::uint32_t> neighbor, position;
+  std::uint64_t count = 0;
+
+  /// Lists the intact bonds among the run's `n` (neighbours `run_neighbor`, flags `broken`); false, and
+  /// nothing listed, when none is broken: the run itself is then the list.
+  bool compact(const std::uint32_t* run_neighbor, const std::uint8_t* broken, std::uint64_t n) {
+    bool any = false;
+    for (std::uint64_t k = 0; k < n && !any; k += 64) {
+      const __mmask64 lanes = n - k >= 64 ? ~__mmask64{0} : (__mmask64{1} << (n - k)) - 1;
+      const __m512i flags = _mm512_maskz_loadu_epi8(lanes, broken + k);
+      any = _mm512_test_epi8_mask(flags, flags) != 0;
+    }
+    if (!any) return false;
+    if (neighbor.size() < n + 16) neighbor.resize(n + 16), position.resize(n + 16);
+    std::uint32_t* to = neighbor.data();  // local pointers: through `this` they are reloaded after each store
+    std::uint32_t* place = position.data();
+    std::uint64_t c = 0;
+    __m512i places = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    // 16 bonds at a time; each store writes 16 entries at c ≤ k, inside the n + 16 reserved.
+    for (std::uint64_t k = 0; k < n; k += 16, places = _mm512_add_epi32(places, _mm512_set1_epi32(16))) {
+      const __mmask16 lanes = n - k >= 16 ? 0xffff : static_cast<__mmask16>((1u << (n - k)) - 1);
+      const __m128i flags = _mm_maskz_loadu_epi8(lanes, broken + k);
+      const __mmask16 keep = lanes & _mm_testn_epi8_mask(flags, flags);
+      // Register compress and a plain store: the compress-to-memory form is microcoded on Zen 4.
+      _mm512_storeu_si512(to + c, _mm512_maskz_compress_epi32(keep, _mm512_maskz_loadu_epi32(lanes, run_neighbor + k)));
+      _mm512_storeu_si512(place + c, _mm512_maskz_compress_epi32(keep, places));
+      c += static_cast<std::uint64_t>(__builtin_popcount(keep));
+    }
+    for (std::uint64_t k = c; c > 0 && k % 8 != 0; ++k) to[k] = to[c - 1];
+    count = c;
+    return true;
+  }
+};
 
 }  // namespace peridot::avx512
 PERIDOT_AVX512_END

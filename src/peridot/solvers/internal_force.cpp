@@ -221,21 +221,34 @@ inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, co
   f[0] = fx, f[1] = fy, f[2] = fz;
 }
 
+/// One thread's list of intact bonds for the AVX-512 PMB loop (nothing without it).
+#if PERIDOT_AVX512_GATHER
+using PmbScratch = avx512::IntactBonds;
+#else
+struct PmbScratch {};
+#endif
+
 #if PERIDOT_AVX512_GATHER
 PERIDOT_AVX512_BEGIN
 /// run_force for PMB in 3D with the partners' x and u loaded by core/avx512_gather.hpp (transposes, not
 /// gathers) and the lengths from reciprocal_sqrt (no square root or division per bond, which wait for the
-/// divider), 8 bonds per iteration, reading and writing the bond list in place. |ξ| and |Y| are within
+/// divider), 8 bonds per iteration, reading the bond list in place (a run with broken bonds: the list of
+/// its intact bonds, IntactBonds) and setting the flags of bonds that break. |ξ| and |Y| are within
 /// about 1 ulp of the square roots (a bond at rest still has e = |Y| − |ξ| = 0 exactly: the same operations
 /// on the same bits), so the answers differ from the portable loop's by round-off. The cancellation-free
 /// e = η·(2ξ + η)/(|Y| + |ξ|), η = u_j − u_i, cost 3–15 % of the loop in two
 /// runs and is not used. Without a failure check this step break_limit is +∞, and nothing is stored.
 template <InfluenceKind Influence>
 void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
-                          const std::uint32_t* neighbor, std::uint8_t* broken, double f[3]) {
+                          const std::uint32_t* neighbor, std::uint8_t* broken, avx512::IntactBonds& intact_bonds,
+                          double f[3]) {
   static_assert(Influence != InfluenceKind::gaussian, "the Gaussian influence takes the portable loop");
-  const std::uint64_t count = run.b_end - run.b_begin;
+  std::uint64_t count = run.b_end - run.b_begin;
   neighbor += run.b_begin, broken += run.b_begin;
+  // Broken bonds cost nothing: a run with any takes the list of its intact bonds. Without broken bonds
+  // the list would be the run itself, so both ways give the same lanes and bits.
+  const bool compacted = intact_bonds.compact(neighbor, broken, count);
+  if (compacted) neighbor = intact_bonds.neighbor.data(), count = intact_bonds.count;
   __m512d x_i[3], u_i[3];
   for (int d = 0; d < 3; ++d) x_i[d] = _mm512_set1_pd(run.x[3 * i + d]), u_i[d] = _mm512_set1_pd(run.u[3 * i + d]);
   const __m512d half_c = _mm512_set1_pd(0.5 * p.micromodulus), horizon = _mm512_set1_pd(p.horizon);
@@ -249,8 +262,13 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
   __m512d fx = zero, fy = zero, fz = zero;
   std::uint32_t tail[8];
   for (std::uint64_t b = 0; b < count; b += 8) {
-    const std::uint32_t* j;
-    const __mmask8 intact = avx512::intact_lanes(neighbor, broken, b, count, tail, j);
+    const std::uint64_t left = count - b;
+    const __mmask8 intact = left >= 8 ? 0xff : static_cast<__mmask8>((1u << left) - 1);
+    const std::uint32_t* j = neighbor + b;
+    if (left < 8 && !compacted) {  // the list is padded; the run is not: its last neighbour fills the lanes
+      for (std::uint64_t k = 0; k < 8; ++k) tail[k] = neighbor[b + std::min(k, left - 1)];
+      j = tail;
+    }
     __m512d dx[3], du[3], dy[3];
     avx512::load_vec3(run.x, j, dx);
     avx512::load_vec3(run.u, j, du);
@@ -274,7 +292,10 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
     const __mmask8 breaking = intact & _mm512_cmp_pd_mask(e, break_limit * xi, _CMP_GT_OQ);
     // Only when a bond breaks: a masked store, even of no lane, overlaps the next group's flag load and
     // stalls it (no store-to-load forwarding from masked stores): 13 % of the loop's time on Zen 4.
-    if (breaking) _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
+    if (breaking && compacted)
+      for (unsigned m = breaking; m != 0; m &= m - 1) broken[intact_bonds.position[b + __builtin_ctz(m)]] = 1;
+    else if (breaking)
+      _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
     const __mmask8 carries = intact & ~_mm512_cmp_pd_mask(e, drop_limit * xi, _CMP_GT_OQ);
     const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
     fx += scale * dy[0], fy += scale * dy[1], fz += scale * dy[2];
@@ -288,16 +309,16 @@ PERIDOT_AVX512_END
 /// constant or 1/|ξ| influence); false elsewhere, and then nothing is done.
 template <int Dim, class Model>
 bool pmb_force_in_place(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
-                        const std::uint32_t* neighbors, std::uint8_t* broken, double f[3]) {
+                        const std::uint32_t* neighbors, std::uint8_t* broken, PmbScratch& scratch, double f[3]) {
 #if PERIDOT_AVX512_GATHER
   if constexpr (Dim == 3 && std::is_same_v<Model, Pmb>) {
     if (p.influence == InfluenceKind::constant)
-      return run_force_pmb_avx512<InfluenceKind::constant>(run, p, i, neighbors, broken, f), true;
+      return run_force_pmb_avx512<InfluenceKind::constant>(run, p, i, neighbors, broken, scratch, f), true;
     if (p.influence == InfluenceKind::inverse_distance)
-      return run_force_pmb_avx512<InfluenceKind::inverse_distance>(run, p, i, neighbors, broken, f), true;
+      return run_force_pmb_avx512<InfluenceKind::inverse_distance>(run, p, i, neighbors, broken, scratch, f), true;
   }
 #else
-  (void)run, (void)p, (void)i, (void)neighbors, (void)broken, (void)f;
+  (void)run, (void)p, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)f;
 #endif
   return false;
 }
@@ -405,6 +426,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
 #pragma omp parallel
     {
       RunScratch scratch;
+      PmbScratch intact;
       SameBlockRun run{x, up, ctx.disc->volume.data(), reverse, ctx.partial_volume_radius, break_limit,
                        after_force ? infinity : break_limit, 0, 0, nullptr, nullptr, nullptr};
       if (!ctx.uniform_volume.empty() && range.begin < range.end)
@@ -413,8 +435,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
       for (std::size_t i = range.begin; i < range.end; ++i) {
         find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
         double fi[3] = {0, 0, 0};
-        // The AVX-512 PMB loop reads and writes the bond list itself, without the scratch.
-        const bool in_place = vector_path && pmb_force_in_place<Dim, Model>(run, p, i, neighbors, broken, fi);
+        // The AVX-512 PMB loop reads and writes the bond list itself, without the run's scratch.
+        const bool in_place = vector_path && pmb_force_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, fi);
         if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
