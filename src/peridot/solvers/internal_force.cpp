@@ -237,8 +237,10 @@ PERIDOT_AVX512_BEGIN
 /// about 1 ulp of the square roots (a bond at rest still has e = |Y| − |ξ| = 0 exactly: the same operations
 /// on the same bits), so the answers differ from the portable loop's by round-off. The cancellation-free
 /// e = η·(2ξ + η)/(|Y| + |ξ|), η = u_j − u_i, cost 3–15 % of the loop in two
-/// runs and is not used. Without a failure check this step break_limit is +∞, and nothing is stored.
-template <InfluenceKind Influence>
+/// runs and is not used. `Check` is which failure check runs this step (from the run's limits, see
+/// pmb_force_in_place): none (the limits are +∞) costs no comparison.
+enum class FailureCheck { none, before_force, after_force };
+template <InfluenceKind Influence, FailureCheck Check>
 void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
                           const std::uint32_t* neighbor, std::uint8_t* broken, avx512::IntactBonds& intact_bonds,
                           double f[3]) {
@@ -255,7 +257,7 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
   const double r = run.partial_volume_radius;
   const __m512d outer = _mm512_set1_pd(p.horizon + r), half_over_r = _mm512_set1_pd(r > 0 ? 0.5 / r : 0.0);
   const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
-  const __m512d break_limit = _mm512_set1_pd(run.break_limit), drop_limit = _mm512_set1_pd(run.drop_limit);
+  const __m512d break_limit = _mm512_set1_pd(run.break_limit);
   // Lattice blocks: one volume for all, broadcast instead of gathered (a ninth of the loads).
   const bool uniform = run.uniform_volume > 0;
   const __m512d uniform_volume = _mm512_set1_pd(run.uniform_volume);
@@ -289,14 +291,17 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
     if (r > 0)  // partial_volume_factor: (δ + r − ξ)/(2r), clipped to [0, 1]
       v = v * _mm512_min_pd(_mm512_max_pd((outer - xi) * half_over_r, zero), one);
     const __m512d carried = t * v * inverse_length;
-    const __mmask8 breaking = intact & _mm512_cmp_pd_mask(e, break_limit * xi, _CMP_GT_OQ);
-    // Only when a bond breaks: a masked store, even of no lane, overlaps the next group's flag load and
-    // stalls it (no store-to-load forwarding from masked stores): 13 % of the loop's time on Zen 4.
-    if (breaking && compacted)
-      for (unsigned m = breaking; m != 0; m &= m - 1) broken[intact_bonds.position[b + __builtin_ctz(m)]] = 1;
-    else if (breaking)
-      _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
-    const __mmask8 carries = intact & ~_mm512_cmp_pd_mask(e, drop_limit * xi, _CMP_GT_OQ);
+    __mmask8 carries = intact;
+    if constexpr (Check != FailureCheck::none) {
+      const __mmask8 breaking = intact & _mm512_cmp_pd_mask(e, break_limit * xi, _CMP_GT_OQ);
+      // Only when a bond breaks: a masked store, even of no lane, stalls a later load of the same bytes (no
+      // store-to-load forwarding from masked stores); stored in every group it cost 13 % of the loop on Zen 4.
+      if (breaking && compacted)
+        for (unsigned m = breaking; m != 0; m &= m - 1) broken[intact_bonds.position[b + __builtin_ctz(m)]] = 1;
+      else if (breaking)
+        _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
+      if constexpr (Check == FailureCheck::before_force) carries = intact & ~breaking;
+    }
     const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
     fx += scale * dy[0], fy += scale * dy[1], fz += scale * dy[2];
   }
@@ -312,10 +317,23 @@ bool pmb_force_in_place(const SameBlockRun& run, const MaterialParams& p, std::s
                         const std::uint32_t* neighbors, std::uint8_t* broken, PmbScratch& scratch, double f[3]) {
 #if PERIDOT_AVX512_GATHER
   if constexpr (Dim == 3 && std::is_same_v<Model, Pmb>) {
+    // A bond carries no force when it breaks now, unless it breaks only after this step's force (the
+    // limits of SameBlockRun: break_limit finite, drop_limit +∞).
+    const bool check = run.break_limit != std::numeric_limits<double>::infinity();
+    const auto with_check = [&](auto influence) {
+      constexpr InfluenceKind kind = decltype(influence)::value;
+      if (!check)
+        run_force_pmb_avx512<kind, FailureCheck::none>(run, p, i, neighbors, broken, scratch, f);
+      else if (run.drop_limit == run.break_limit)
+        run_force_pmb_avx512<kind, FailureCheck::before_force>(run, p, i, neighbors, broken, scratch, f);
+      else
+        run_force_pmb_avx512<kind, FailureCheck::after_force>(run, p, i, neighbors, broken, scratch, f);
+      return true;
+    };
     if (p.influence == InfluenceKind::constant)
-      return run_force_pmb_avx512<InfluenceKind::constant>(run, p, i, neighbors, broken, scratch, f), true;
+      return with_check(std::integral_constant<InfluenceKind, InfluenceKind::constant>{});
     if (p.influence == InfluenceKind::inverse_distance)
-      return run_force_pmb_avx512<InfluenceKind::inverse_distance>(run, p, i, neighbors, broken, scratch, f), true;
+      return with_check(std::integral_constant<InfluenceKind, InfluenceKind::inverse_distance>{});
   }
 #else
   (void)run, (void)p, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)f;
