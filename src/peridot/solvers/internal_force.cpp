@@ -253,14 +253,17 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
   if (compacted) neighbor = intact_bonds.neighbor.data(), count = intact_bonds.count;
   __m512d x_i[3], u_i[3];
   for (int d = 0; d < 3; ++d) x_i[d] = _mm512_set1_pd(run.x[3 * i + d]), u_i[d] = _mm512_set1_pd(run.u[3 * i + d]);
-  const __m512d half_c = _mm512_set1_pd(0.5 * p.micromodulus), horizon = _mm512_set1_pd(p.horizon);
+  // The bond's force is c ω e V_j/(|ξ||Y|) along Y (Pmb::force_scalar of both ends): δ of the 1/|ξ|
+  // influence and c go into one constant, and V_j too where the block's volumes are all one.
+  const double c = Influence == InfluenceKind::inverse_distance ? p.micromodulus * p.horizon : p.micromodulus;
+  const __m512d c_scaled = _mm512_set1_pd(c);
   const double r = run.partial_volume_radius;
   const __m512d outer = _mm512_set1_pd(p.horizon + r), half_over_r = _mm512_set1_pd(r > 0 ? 0.5 / r : 0.0);
   const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
   const __m512d break_limit = _mm512_set1_pd(run.break_limit);
   // Lattice blocks: one volume for all, broadcast instead of gathered (a ninth of the loads).
   const bool uniform = run.uniform_volume > 0;
-  const __m512d uniform_volume = _mm512_set1_pd(run.uniform_volume);
+  const __m512d c_uniform_volume = _mm512_set1_pd(c * run.uniform_volume);
   __m512d fx = zero, fy = zero, fz = zero;
   std::uint32_t tail[8];
   for (std::uint64_t b = 0; b < count; b += 8) {
@@ -280,17 +283,16 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
     const __m512d inverse_xi = avx512::reciprocal_sqrt(xi2), inverse_length = avx512::reciprocal_sqrt(y2);
     const __m512d xi = xi2 * inverse_xi, length = y2 * inverse_length;
     const __m512d e = length - xi;
-    const __m512d omega = Influence == InfluenceKind::inverse_distance ? horizon * inverse_xi : one;
-    const __m512d t_half = half_c * omega * e * inverse_xi;  // Pmb::force_scalar of each end
-    const __m512d t = t_half + t_half;
-    __m512d v = uniform_volume;
+    __m512d cv = c_uniform_volume;
     if (!uniform) {  // 64-bit indices: a 32-bit gather would read point indices past 2³¹ as negative.
       const __m512i index = _mm512_cvtepu32_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(j)));
-      v = _mm512_i64gather_pd(index, run.volume, 8);
+      cv = c_scaled * _mm512_i64gather_pd(index, run.volume, 8);
     }
     if (r > 0)  // partial_volume_factor: (δ + r − ξ)/(2r), clipped to [0, 1]
-      v = v * _mm512_min_pd(_mm512_max_pd((outer - xi) * half_over_r, zero), one);
-    const __m512d carried = t * v * inverse_length;
+      cv = cv * _mm512_min_pd(_mm512_max_pd((outer - xi) * half_over_r, zero), one);
+    // ω/|ξ|: 1/|ξ|², δ being in c, or 1/|ξ|
+    const __m512d weight = Influence == InfluenceKind::inverse_distance ? inverse_xi * inverse_xi : inverse_xi;
+    const __m512d carried = (cv * weight) * (e * inverse_length);
     __mmask8 carries = intact;
     if constexpr (Check != FailureCheck::none) {
       const __mmask8 breaking = intact & _mm512_cmp_pd_mask(e, break_limit * xi, _CMP_GT_OQ);
