@@ -28,20 +28,25 @@
 PERIDOT_AVX512_BEGIN
 namespace peridot::avx512 {
 
-/// The lanes of the bonds b … b+7 of a run of `count` bonds (b < count) that are intact (broken[b + k] = 0)
-/// and inside the run; nothing past the run is read. `j` is pointed at their neighbour indices: the run's
-/// own, or for a last partial group `tail`, which repeats the run's last neighbour in the lanes past it (a
-/// masked lane reads that partner's finite record and adds nothing).
+/// The lanes of the bonds b … b+7 of a run of `count` bonds (b < count) that are inside the run. `j` is
+/// pointed at their neighbour indices: the run's own, or for a last partial group `tail`, which repeats the
+/// run's last neighbour in the lanes past it (a masked lane reads that partner's finite record and adds
+/// nothing); nothing past the run is read.
+[[gnu::always_inline]] inline __mmask8 group_lanes(const std::uint32_t* neighbor, std::uint64_t b, std::uint64_t count,
+                                                   std::uint32_t tail[8], const std::uint32_t*& j) {
+  const std::uint64_t left = count - b;
+  j = neighbor + b;
+  if (left >= 8) return 0xff;
+  for (std::uint64_t k = 0; k < 8; ++k) tail[k] = neighbor[b + std::min(k, left - 1)];
+  j = tail;
+  return static_cast<__mmask8>((1u << left) - 1);
+}
+
+/// The group_lanes whose bonds are intact (broken[b + k] = 0).
 [[gnu::always_inline]] inline __mmask8 intact_lanes(const std::uint32_t* neighbor, const std::uint8_t* broken,
                                                     std::uint64_t b, std::uint64_t count, std::uint32_t tail[8],
                                                     const std::uint32_t*& j) {
-  const std::uint64_t left = count - b;
-  const __mmask8 lanes = left >= 8 ? 0xff : static_cast<__mmask8>((1u << left) - 1);
-  j = neighbor + b;
-  if (left < 8) {
-    for (std::uint64_t k = 0; k < 8; ++k) tail[k] = neighbor[b + std::min(k, left - 1)];
-    j = tail;
-  }
+  const __mmask8 lanes = group_lanes(neighbor, b, count, tail, j);
   const __m128i flags = _mm_maskz_loadu_epi8(lanes, broken + b);
   return lanes & static_cast<__mmask8>(_mm_testn_epi8_mask(flags, flags));
 }
@@ -108,8 +113,7 @@ namespace peridot::avx512 {
 }
 
 /// The intact bonds of one run, for a loop that skips broken bonds (LAMMPS PERI skips them too): their
-/// neighbours and their places in the run, in the run's order, the neighbours padded to a multiple of 8
-/// with the last one (read by masked lanes only). One per thread; it grows to the longest run.
+/// neighbours and their places in the run, in the run's order. One per thread; it grows to the longest run.
 struct IntactBonds {
   std::vector<std::uint32_t> neighbor, position;
   std::uint64_t count = 0;
@@ -139,7 +143,6 @@ struct IntactBonds {
       _mm512_storeu_si512(place + c, _mm512_maskz_compress_epi32(keep, places));
       c += static_cast<std::uint64_t>(__builtin_popcount(keep));
     }
-    for (std::uint64_t k = c; c > 0 && k % 8 != 0; ++k) to[k] = to[c - 1];
     count = c;
     return true;
   }

@@ -230,6 +230,9 @@ struct PmbScratch {};
 
 #if PERIDOT_AVX512_GATHER
 PERIDOT_AVX512_BEGIN
+/// The failure check of a step: none, before any force uses the bond, or after (LAMMPS's order).
+enum class FailureCheck { none, before_force, after_force };
+
 /// run_force for PMB in 3D with the partners' x and u loaded by core/avx512_gather.hpp (transposes, not
 /// gathers) and the lengths from reciprocal_sqrt (no square root or division per bond, which wait for the
 /// divider), 8 bonds per iteration, reading the bond list in place (a run with broken bonds: the list of
@@ -239,7 +242,6 @@ PERIDOT_AVX512_BEGIN
 /// e = η·(2ξ + η)/(|Y| + |ξ|), η = u_j − u_i, cost 3–15 % of the loop in two
 /// runs and is not used. `Check` is which failure check runs this step (from the run's limits, see
 /// pmb_force_in_place): none (the limits are +∞) costs no comparison.
-enum class FailureCheck { none, before_force, after_force };
 template <InfluenceKind Influence, FailureCheck Check>
 void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
                           const std::uint32_t* neighbor, std::uint8_t* broken, avx512::IntactBonds& intact_bonds,
@@ -267,13 +269,8 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
   __m512d fx = zero, fy = zero, fz = zero;
   std::uint32_t tail[8];
   for (std::uint64_t b = 0; b < count; b += 8) {
-    const std::uint64_t left = count - b;
-    const __mmask8 intact = left >= 8 ? 0xff : static_cast<__mmask8>((1u << left) - 1);
-    const std::uint32_t* j = neighbor + b;
-    if (left < 8 && !compacted) {  // the list is padded; the run is not: its last neighbour fills the lanes
-      for (std::uint64_t k = 0; k < 8; ++k) tail[k] = neighbor[b + std::min(k, left - 1)];
-      j = tail;
-    }
+    const std::uint32_t* j;
+    const __mmask8 intact = avx512::group_lanes(neighbor, b, count, tail, j);  // every bond listed is intact
     __m512d dx[3], du[3], dy[3];
     avx512::load_vec3(run.x, j, dx);
     avx512::load_vec3(run.u, j, du);
