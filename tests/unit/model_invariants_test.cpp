@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "peridot/geometry/discretize.hpp"
+#include "peridot/neighbor/neighborhood.hpp"
 #include "peridot/solvers/simulation.hpp"
 #include "support/problems.hpp"
 
@@ -360,6 +361,81 @@ TEST(BondFailureInForcePass, BreaksExactlyTheOverstretchedBondsAndTheyCarryNoFor
       for (int d = 0; d < 3; ++d)
         ASSERT_NEAR(with_check(i, d), s.force(i, d), 1e-13 * scale) << "point " << i << " model " << int(model);
   }
+}
+
+
+// The LPS bond loops (AVX-512 in 3D where the machine has it) against the sums written out bond by bond:
+// θ_i = (3/m_i) Σ ω ξ e V_j and f_i = Σ (t_ij + t_ji) V_j Y/|Y| over the intact bonds, t of Lps::force_scalar,
+// with broken bonds (the lists of intact bonds), partial volumes (the volume factor) and one volume changed
+// (V_j read, not broadcast), for both influences the loops take.
+TEST(LpsBondLoops, DilatationAndForceMatchTheBondByBondSums) {
+  for (const InfluenceKind influence : {InfluenceKind::constant, InfluenceKind::inverse_distance})
+    for (const bool partial_volume : {false, true})
+      for (const bool uniform_volume : {true, false}) {
+        BlockSetup setup = setup_for({"", 3, PlaneKind::none, ModelKind::lps, influence});
+        setup.partial_volume = partial_volume;
+        Simulation sim(testing::box_problem(setup));
+        ModelContext& ctx = const_cast<ModelContext&>(sim.model());
+        Discretization& disc = const_cast<Discretization&>(sim.discretization());
+        if (!uniform_volume) {
+          disc.volume[disc.num_points() / 2] *= 1.5;
+          calibrate_models(ctx);
+          ASSERT_EQ(ctx.uniform_volume[0], 0.0);
+        }
+        BondList& bonds = const_cast<BondList&>(sim.bonds());
+        for (std::uint64_t b = 0; b < bonds.num_bonds(); b += 7) bonds.broken[b] = 1;
+        const VectorField u = random_displacement(disc, 2e-3 * 1e-3, 41);
+        State& s = sim.state();
+        compute_dilatation(ctx, u, s.dilatation, false, &s.history);
+        compute_internal_force(ctx, u, s.dilatation, s.force, false, &s.history);
+
+        const MaterialParams& p = ctx.params[0];
+        const std::size_t n = disc.num_points();
+        const double r = ctx.partial_volume_radius;
+        ASSERT_EQ(r > 0, partial_volume);
+        struct Bond { double xi, e, omega, volume; Vec3 y; };
+        auto bond = [&](std::size_t i, std::uint64_t b) {
+          const std::uint32_t j = bonds.neighbors[b];
+          Bond out;
+          out.xi = norm(disc.x.get(j) - disc.x.get(i));
+          out.y = disc.x.get(j) + u.get(j) - disc.x.get(i) - u.get(i);
+          out.e = norm(out.y) - out.xi;
+          out.omega = peridot::influence(p.influence, out.xi, p.horizon);
+          out.volume = disc.volume[j] * partial_volume_factor(out.xi, p.horizon, r);
+          return out;
+        };
+        std::vector<double> theta(n);
+        double theta_scale = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          double sum = 0;
+          for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
+            if (!bonds.broken[b]) {
+              const Bond g = bond(i, b);
+              sum += g.omega * g.xi * g.e * g.volume;
+            }
+          theta[i] = 3 * sum * ctx.inverse_weighted_volume[i];
+          theta_scale = std::max(theta_scale, std::abs(theta[i]));
+        }
+        for (std::size_t i = 0; i < n; ++i) ASSERT_NEAR(s.dilatation[i], theta[i], 1e-12 * theta_scale) << "point " << i;
+        auto t = [&](std::size_t k, const Bond& g) {
+          const double a = ctx.inverse_weighted_volume[k];
+          return g.omega * a * (p.alpha_volumetric * theta[k] * g.xi + p.alpha_deviatoric * (g.e - theta[k] * g.xi / 3));
+        };
+        std::vector<Vec3> force(n);
+        double force_scale = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
+            if (!bonds.broken[b]) {
+              const Bond g = bond(i, b);
+              force[i] = force[i] + ((t(i, g) + t(bonds.neighbors[b], g)) * g.volume / norm(g.y)) * g.y;
+            }
+          for (int d = 0; d < 3; ++d) force_scale = std::max(force_scale, std::abs(force[i][d]));
+        }
+        for (std::size_t i = 0; i < n; ++i)
+          for (int d = 0; d < 3; ++d)
+            ASSERT_NEAR(s.force(i, d), force[i][d], 1e-12 * force_scale)
+                << "point " << i << " influence " << int(influence) << " partial " << partial_volume;
+      }
 }
 
 }  // namespace

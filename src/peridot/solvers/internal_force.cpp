@@ -221,122 +221,274 @@ inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, co
   f[0] = fx, f[1] = fy, f[2] = fz;
 }
 
-/// One thread's list of intact bonds for the AVX-512 PMB loop (nothing without it).
+/// One thread's list of intact bonds for the AVX-512 loops (nothing without them).
 #if PERIDOT_AVX512_GATHER
-using PmbScratch = avx512::IntactBonds;
+using IntactScratch = avx512::IntactBonds;
 #else
-struct PmbScratch {};
+struct IntactScratch {};
 #endif
 
 #if PERIDOT_AVX512_GATHER
 PERIDOT_AVX512_BEGIN
-/// The failure check of a step: none, before any force uses the bond, or after (LAMMPS's order).
+// The AVX-512 loops of 3D PMB and LPS (constant or 1/|ξ| influence): the partners' x and u loaded by
+// core/avx512_gather.hpp (transposes, not gathers), the lengths from reciprocal_sqrt (no square root or
+// division per bond, which wait for the divider), 8 bonds per iteration, the bond list read in place (a run
+// with broken bonds: the list of its intact bonds, IntactBonds, so broken bonds cost nothing, as in LAMMPS)
+// and the flags of bonds that break set where they break. |ξ| and |Y| are within about 1 ulp of the square
+// roots, and a bond at rest still has e = |Y| − |ξ| = 0 exactly (the same operations on the same bits), so
+// the answers differ from the portable loops' by round-off. The cancellation-free e = η·(2ξ + η)/(|Y| + |ξ|),
+// η = u_j − u_i, cost 3–15 % of the PMB loop in two runs and is not used.
+
+/// The failure check of a pass: none, before any force uses the bond, or after (LAMMPS's order).
 enum class FailureCheck { none, before_force, after_force };
 
-/// run_force for PMB in 3D with the partners' x and u loaded by core/avx512_gather.hpp (transposes, not
-/// gathers) and the lengths from reciprocal_sqrt (no square root or division per bond, which wait for the
-/// divider), 8 bonds per iteration, reading the bond list in place (a run with broken bonds: the list of
-/// its intact bonds, IntactBonds) and setting the flags of bonds that break. |ξ| and |Y| are within
-/// about 1 ulp of the square roots (a bond at rest still has e = |Y| − |ξ| = 0 exactly: the same operations
-/// on the same bits), so the answers differ from the portable loop's by round-off. The cancellation-free
-/// e = η·(2ξ + η)/(|Y| + |ξ|), η = u_j − u_i, cost 3–15 % of the loop in two
-/// runs and is not used. `Check` is which failure check runs this step (from the run's limits, see
-/// pmb_force_in_place): none (the limits are +∞) costs no comparison.
-template <InfluenceKind Influence, FailureCheck Check>
-void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
-                          const std::uint32_t* neighbor, std::uint8_t* broken, avx512::IntactBonds& intact_bonds,
-                          double f[3]) {
-  static_assert(Influence != InfluenceKind::gaussian, "the Gaussian influence takes the portable loop");
-  std::uint64_t count = run.b_end - run.b_begin;
-  neighbor += run.b_begin, broken += run.b_begin;
-  // Broken bonds cost nothing: a run with any takes the list of its intact bonds. Without broken bonds
-  // the list would be the run itself, so both ways give the same lanes and bits.
-  const bool compacted = intact_bonds.compact(neighbor, broken, count);
-  if (compacted) neighbor = intact_bonds.neighbor.data(), count = intact_bonds.count;
-  __m512d x_i[3], u_i[3];
-  for (int d = 0; d < 3; ++d) x_i[d] = _mm512_set1_pd(run.x[3 * i + d]), u_i[d] = _mm512_set1_pd(run.u[3 * i + d]);
-  // The bond's force is c ω e V_j/(|ξ||Y|) along Y (Pmb::force_scalar of both ends): δ of the 1/|ξ|
-  // influence and c go into one constant, and V_j too where the block's volumes are all one.
-  const double c = Influence == InfluenceKind::inverse_distance ? p.micromodulus * p.horizon : p.micromodulus;
-  const __m512d c_scaled = _mm512_set1_pd(c);
-  const double r = run.partial_volume_radius;
-  const __m512d outer = _mm512_set1_pd(p.horizon + r), half_over_r = _mm512_set1_pd(r > 0 ? 0.5 / r : 0.0);
-  const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
-  const __m512d break_limit = _mm512_set1_pd(run.break_limit);
-  // Lattice blocks: one volume for all, broadcast instead of gathered (a ninth of the loads).
-  const bool uniform = run.uniform_volume > 0;
-  const __m512d c_uniform_volume = _mm512_set1_pd(c * run.uniform_volume);
-  __m512d fx = zero, fy = zero, fz = zero;
-  std::uint32_t tail[8];
-  for (std::uint64_t b = 0; b < count; b += 8) {
-    const std::uint32_t* j;
-    const __mmask8 intact = avx512::group_lanes(neighbor, b, count, tail, j);  // every bond listed is intact
-    __m512d dx[3], du[3], dy[3];
+/// The check a pass runs, from the run's limits (SameBlockRun): none where they are +∞.
+inline FailureCheck failure_check(const SameBlockRun& run) {
+  if (run.break_limit == std::numeric_limits<double>::infinity()) return FailureCheck::none;
+  return run.drop_limit == run.break_limit ? FailureCheck::before_force : FailureCheck::after_force;
+}
+
+/// Runs f(std::integral_constant<FailureCheck, check>, std::integral_constant<InfluenceKind, kind>) for the
+/// run's check and the constant or 1/|ξ| influence; false, and nothing run, for another influence.
+template <class F>
+bool with_check_and_influence(const SameBlockRun& run, InfluenceKind influence, F&& f) {
+  const auto with_check = [&](auto kind) {
+    switch (failure_check(run)) {
+      case FailureCheck::none: f(std::integral_constant<FailureCheck, FailureCheck::none>{}, kind); break;
+      case FailureCheck::before_force: f(std::integral_constant<FailureCheck, FailureCheck::before_force>{}, kind); break;
+      case FailureCheck::after_force: f(std::integral_constant<FailureCheck, FailureCheck::after_force>{}, kind); break;
+    }
+    return true;
+  };
+  if (influence == InfluenceKind::constant)
+    return with_check(std::integral_constant<InfluenceKind, InfluenceKind::constant>{});
+  if (influence == InfluenceKind::inverse_distance)
+    return with_check(std::integral_constant<InfluenceKind, InfluenceKind::inverse_distance>{});
+  return false;  // the Gaussian influence takes the portable loops
+}
+
+/// The bonds of a run the loops visit: the run in place, or, with any broken, the list of its intact ones.
+struct IntactRun {
+  const std::uint32_t* neighbor;
+  std::uint64_t count;
+  std::uint8_t* broken;  ///< the run's flags (b_begin on)
+  const std::uint32_t* position = nullptr;  ///< listed bond → its place in the run (nullptr: in place)
+
+  IntactRun(const SameBlockRun& run, const std::uint32_t* neighbors, std::uint8_t* flags, avx512::IntactBonds& list)
+      : neighbor(neighbors + run.b_begin), count(run.b_end - run.b_begin), broken(flags + run.b_begin) {
+    // Without broken bonds the list would be the run itself: the same lanes and bits either way.
+    if (list.compact(neighbor, broken, count))
+      neighbor = list.neighbor.data(), count = list.count, position = list.position.data();
+  }
+
+  /// Sets the flags of the bonds b … b+7 in `breaking`. Only when a bond breaks: a masked store, even of no
+  /// lane, stalls a later load of the same bytes (no store-to-load forwarding from masked stores); stored
+  /// in every group it cost 13 % of the PMB loop on Zen 4.
+  [[gnu::always_inline]] void mark_broken(__mmask8 breaking, std::uint64_t b) const {
+    if (!breaking) return;
+    if (position)
+      for (unsigned m = breaking; m != 0; m &= m - 1) broken[position[b + __builtin_ctz(m)]] = 1;
+    else
+      _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
+  }
+};
+
+/// Point i's x and u, broadcast.
+struct PointI {
+  __m512d x[3], u[3];
+  PointI(const SameBlockRun& run, std::size_t i) {
+    for (int d = 0; d < 3; ++d) x[d] = _mm512_set1_pd(run.x[3 * i + d]), u[d] = _mm512_set1_pd(run.u[3 * i + d]);
+  }
+};
+
+/// The geometry of 8 bonds of point i: Y, |ξ|, |Y|, their reciprocals and e = |Y| − |ξ|.
+struct BondGroup {
+  __m512d dy[3], xi, length, inverse_xi, inverse_length, e;
+
+  [[gnu::always_inline]] BondGroup(const SameBlockRun& run, const PointI& point, const std::uint32_t* j) {
+    __m512d dx[3], du[3];
     avx512::load_vec3(run.x, j, dx);
     avx512::load_vec3(run.u, j, du);
-    for (int d = 0; d < 3; ++d) dx[d] = dx[d] - x_i[d], du[d] = du[d] - u_i[d], dy[d] = dx[d] + du[d];
+    for (int d = 0; d < 3; ++d) dx[d] = dx[d] - point.x[d], du[d] = du[d] - point.u[d], dy[d] = dx[d] + du[d];
     const __m512d xi2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
     const __m512d y2 = dy[0] * dy[0] + dy[1] * dy[1] + dy[2] * dy[2];
-    const __m512d inverse_xi = avx512::reciprocal_sqrt(xi2), inverse_length = avx512::reciprocal_sqrt(y2);
-    const __m512d xi = xi2 * inverse_xi, length = y2 * inverse_length;
-    const __m512d e = length - xi;
+    inverse_xi = avx512::reciprocal_sqrt(xi2), inverse_length = avx512::reciprocal_sqrt(y2);
+    xi = xi2 * inverse_xi, length = y2 * inverse_length;
+    e = length - xi;
+  }
+};
+
+/// The 8 indices of `j` widened to 64 bits: a 32-bit gather would read point indices past 2³¹ as negative.
+[[gnu::always_inline]] inline __m512i wide_index(const std::uint32_t* j) {
+  return _mm512_cvtepu32_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(j)));
+}
+
+/// c V_j times the partial-volume factor of the bonds of a group, for a constant c of the run.
+struct PartnerVolume {
+  bool uniform;  // lattice blocks: one volume for all, broadcast instead of gathered (a ninth of PMB's loads)
+  double r;
+  __m512d c, c_uniform_volume, outer, half_over_r;
+
+  PartnerVolume(const SameBlockRun& run, double constant)
+      : uniform(run.uniform_volume > 0), r(run.partial_volume_radius), c(_mm512_set1_pd(constant)),
+        c_uniform_volume(_mm512_set1_pd(constant * run.uniform_volume)),
+        outer(_mm512_set1_pd(0)), half_over_r(_mm512_set1_pd(r > 0 ? 0.5 / r : 0.0)) {}
+  PartnerVolume(const SameBlockRun& run, double constant, double horizon) : PartnerVolume(run, constant) {
+    outer = _mm512_set1_pd(horizon + r);
+  }
+
+  /// `index`: wide_index(j), or nullptr to widen it only where the volumes are read.
+  [[gnu::always_inline]] __m512d operator()(const SameBlockRun& run, const std::uint32_t* j, const __m512i* index,
+                                            __m512d xi) const {
     __m512d cv = c_uniform_volume;
-    if (!uniform) {  // 64-bit indices: a 32-bit gather would read point indices past 2³¹ as negative.
-      const __m512i index = _mm512_cvtepu32_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(j)));
-      cv = c_scaled * _mm512_i64gather_pd(index, run.volume, 8);
-    }
+    if (!uniform) cv = c * _mm512_i64gather_pd(index ? *index : wide_index(j), run.volume, 8);
     if (r > 0)  // partial_volume_factor: (δ + r − ξ)/(2r), clipped to [0, 1]
-      cv = cv * _mm512_min_pd(_mm512_max_pd((outer - xi) * half_over_r, zero), one);
+      cv = cv * _mm512_min_pd(_mm512_max_pd((outer - xi) * half_over_r, _mm512_setzero_pd()), _mm512_set1_pd(1.0));
+    return cv;
+  }
+};
+
+/// Which lanes of a group carry force and which break now, for the pass's check.
+template <FailureCheck Check>
+[[gnu::always_inline]] inline __mmask8 carrying_lanes(__mmask8 lanes, const BondGroup& g, __m512d break_limit,
+                                                      __mmask8& breaking) {
+  breaking = 0;
+  if constexpr (Check == FailureCheck::none) return lanes;
+  breaking = lanes & _mm512_cmp_pd_mask(g.e, break_limit * g.xi, _CMP_GT_OQ);
+  return Check == FailureCheck::before_force ? lanes & ~breaking : lanes;
+}
+
+/// PMB force on point i from its run: c ω e V_j/(|ξ||Y|) along Y per bond (Pmb::force_scalar of both ends),
+/// δ of the 1/|ξ| influence and c in one constant, and a uniform V_j too.
+template <InfluenceKind Influence, FailureCheck Check>
+void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i, const IntactRun& bonds,
+                          double f[3]) {
+  const PointI point(run, i);
+  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.micromodulus * p.horizon : p.micromodulus,
+                             p.horizon);
+  const __m512d break_limit = _mm512_set1_pd(run.break_limit);
+  __m512d fx = _mm512_setzero_pd(), fy = fx, fz = fx;
+  std::uint32_t tail[8];
+  for (std::uint64_t b = 0; b < bonds.count; b += 8) {
+    const std::uint32_t* j;
+    const __mmask8 lanes = avx512::group_lanes(bonds.neighbor, b, bonds.count, tail, j);  // every bond listed is intact
+    const BondGroup g(run, point, j);
+    const __m512d cv = volume(run, j, nullptr, g.xi);
     // ω/|ξ|: 1/|ξ|², δ being in c, or 1/|ξ|
-    const __m512d weight = Influence == InfluenceKind::inverse_distance ? inverse_xi * inverse_xi : inverse_xi;
-    const __m512d carried = (cv * weight) * (e * inverse_length);
-    __mmask8 carries = intact;
-    if constexpr (Check != FailureCheck::none) {
-      const __mmask8 breaking = intact & _mm512_cmp_pd_mask(e, break_limit * xi, _CMP_GT_OQ);
-      // Only when a bond breaks: a masked store, even of no lane, stalls a later load of the same bytes (no
-      // store-to-load forwarding from masked stores); stored in every group it cost 13 % of the loop on Zen 4.
-      if (breaking && compacted)
-        for (unsigned m = breaking; m != 0; m &= m - 1) broken[intact_bonds.position[b + __builtin_ctz(m)]] = 1;
-      else if (breaking)
-        _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
-      if constexpr (Check == FailureCheck::before_force) carries = intact & ~breaking;
-    }
+    const __m512d weight = Influence == InfluenceKind::inverse_distance ? g.inverse_xi * g.inverse_xi : g.inverse_xi;
+    const __m512d carried = (cv * weight) * (g.e * g.inverse_length);
+    __mmask8 breaking;
+    const __mmask8 carries = carrying_lanes<Check>(lanes, g, break_limit, breaking);
+    bonds.mark_broken(breaking, b);
     const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
-    fx += scale * dy[0], fy += scale * dy[1], fz += scale * dy[2];
+    fx += scale * g.dy[0], fy += scale * g.dy[1], fz += scale * g.dy[2];
+  }
+  f[0] = _mm512_reduce_add_pd(fx), f[1] = _mm512_reduce_add_pd(fy), f[2] = _mm512_reduce_add_pd(fz);
+}
+
+/// LPS dilatation sum Σ ω ξ e V_j over point i's run (δ of the 1/|ξ| influence in the volume constant), and
+/// what the bonds that break now took out of it.
+template <InfluenceKind Influence, FailureCheck Check>
+void run_dilatation_lps_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i, const IntactRun& bonds,
+                               double& sum_out, double& lost_out) {
+  static_assert(Check != FailureCheck::after_force, "the dilatation pass checks before the force");
+  const PointI point(run, i);
+  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
+  const __m512d break_limit = _mm512_set1_pd(run.break_limit);
+  __m512d sum = _mm512_setzero_pd(), lost = sum;
+  std::uint32_t tail[8];
+  for (std::uint64_t b = 0; b < bonds.count; b += 8) {
+    const std::uint32_t* j;
+    const __mmask8 lanes = avx512::group_lanes(bonds.neighbor, b, bonds.count, tail, j);
+    const BondGroup g(run, point, j);
+    const __m512d cv = volume(run, j, nullptr, g.xi);
+    // ω ξ: ξ, or δ (in cv)
+    const __m512d term = (Influence == InfluenceKind::inverse_distance ? g.e : g.e * g.xi) * cv;
+    __mmask8 breaking;
+    const __mmask8 counts = carrying_lanes<Check>(lanes, g, break_limit, breaking);
+    bonds.mark_broken(breaking, b);
+    sum = _mm512_mask_add_pd(sum, counts, sum, term);
+    if constexpr (Check != FailureCheck::none) lost = _mm512_mask_add_pd(lost, breaking, lost, term);
+  }
+  sum_out = _mm512_reduce_add_pd(sum), lost_out = _mm512_reduce_add_pd(lost);
+}
+
+/// LPS force on point i from its run. Lps::force_scalar of both ends, t = ω[a (e − θξ/n) α_d + a θ ξ α_v]
+/// with a = 1/m, summed and regrouped as t = ω[α_d (a_i + a_j) e + β ξ (a_i θ_i + a_j θ_j)], β = α_v − α_d/n;
+/// with ω = δ/|ξ| that is δ[α_d (a_i + a_j) e/|ξ| + β (a_i θ_i + a_j θ_j)], δ in the volume constant. θ_j and
+/// a_j are gathered (one widening of the indices for both, and for V_j).
+template <InfluenceKind Influence, FailureCheck Check>
+void run_force_lps_avx512(const SameBlockRun& run, const MaterialParams& p, const KernelFields& s, std::size_t i,
+                          const IntactRun& bonds, double f[3]) {
+  const PointI point(run, i);
+  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
+  const __m512d break_limit = _mm512_set1_pd(run.break_limit);
+  const double beta = p.alpha_volumetric - p.alpha_deviatoric * p.inverse_dilatation_factor;
+  const __m512d alpha_d = _mm512_set1_pd(p.alpha_deviatoric), beta_v = _mm512_set1_pd(beta);
+  const __m512d a_i = _mm512_set1_pd(s.inverse_m[i]), a_theta_i = _mm512_set1_pd(s.inverse_m[i] * s.theta[i]);
+  __m512d fx = _mm512_setzero_pd(), fy = fx, fz = fx;
+  std::uint32_t tail[8];
+  for (std::uint64_t b = 0; b < bonds.count; b += 8) {
+    const std::uint32_t* j;
+    const __mmask8 lanes = avx512::group_lanes(bonds.neighbor, b, bonds.count, tail, j);
+    const BondGroup g(run, point, j);
+    const __m512i index = wide_index(j);
+    const __m512d a_j = _mm512_i64gather_pd(index, s.inverse_m, 8);
+    const __m512d theta_j = _mm512_i64gather_pd(index, s.theta, 8);
+    const __m512d cv = volume(run, j, &index, g.xi);
+    const __m512d deviatoric = alpha_d * (a_i + a_j), volumetric = beta_v * (a_theta_i + a_j * theta_j);
+    const __m512d t = Influence == InfluenceKind::inverse_distance ? deviatoric * (g.e * g.inverse_xi) + volumetric
+                                                                   : deviatoric * g.e + volumetric * g.xi;
+    const __m512d carried = (t * cv) * g.inverse_length;
+    __mmask8 breaking;
+    const __mmask8 carries = carrying_lanes<Check>(lanes, g, break_limit, breaking);
+    bonds.mark_broken(breaking, b);
+    const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
+    fx += scale * g.dy[0], fy += scale * g.dy[1], fz += scale * g.dy[2];
   }
   f[0] = _mm512_reduce_add_pd(fx), f[1] = _mm512_reduce_add_pd(fy), f[2] = _mm512_reduce_add_pd(fz);
 }
 PERIDOT_AVX512_END
 #endif
 
-/// Point i's force from its own block through the AVX-512 PMB loop, where that loop applies (3D PMB, the
+/// Point i's force from its own block through an AVX-512 loop, where one applies (3D PMB or LPS, the constant
+/// or 1/|ξ| influence); false elsewhere, and then nothing is done. It reads and writes the bond list itself.
+template <int Dim, class Model>
+bool force_in_place(const SameBlockRun& run, const MaterialParams& p, const KernelFields& s, std::size_t i,
+                    const std::uint32_t* neighbors, std::uint8_t* broken, IntactScratch& scratch, double f[3]) {
+#if PERIDOT_AVX512_GATHER
+  if constexpr (Dim == 3 && (std::is_same_v<Model, Pmb> || std::is_same_v<Model, Lps>)) {
+    if (p.influence == InfluenceKind::gaussian) return false;
+    const IntactRun bonds(run, neighbors, broken, scratch);
+    return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
+      if constexpr (std::is_same_v<Model, Pmb>)
+        run_force_pmb_avx512<kind.value, check.value>(run, p, i, bonds, f);
+      else
+        run_force_lps_avx512<kind.value, check.value>(run, p, s, i, bonds, f);
+    });
+  }
+#endif
+  (void)run, (void)p, (void)s, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)f;
+  return false;
+}
+
+/// Point i's dilatation sum from its own block through the AVX-512 LPS loop, where it applies (3D LPS, the
 /// constant or 1/|ξ| influence); false elsewhere, and then nothing is done.
 template <int Dim, class Model>
-bool pmb_force_in_place(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
-                        const std::uint32_t* neighbors, std::uint8_t* broken, PmbScratch& scratch, double f[3]) {
+bool dilatation_in_place(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
+                         const std::uint32_t* neighbors, std::uint8_t* broken, IntactScratch& scratch, double& sum,
+                         double& lost) {
 #if PERIDOT_AVX512_GATHER
-  if constexpr (Dim == 3 && std::is_same_v<Model, Pmb>) {
-    // A bond carries no force when it breaks now, unless it breaks only after this step's force (the
-    // limits of SameBlockRun: break_limit finite, drop_limit +∞).
-    const bool check = run.break_limit != std::numeric_limits<double>::infinity();
-    const auto with_check = [&](auto influence) {
-      constexpr InfluenceKind kind = decltype(influence)::value;
-      if (!check)
-        run_force_pmb_avx512<kind, FailureCheck::none>(run, p, i, neighbors, broken, scratch, f);
-      else if (run.drop_limit == run.break_limit)
-        run_force_pmb_avx512<kind, FailureCheck::before_force>(run, p, i, neighbors, broken, scratch, f);
-      else
-        run_force_pmb_avx512<kind, FailureCheck::after_force>(run, p, i, neighbors, broken, scratch, f);
-      return true;
-    };
-    if (p.influence == InfluenceKind::constant)
-      return with_check(std::integral_constant<InfluenceKind, InfluenceKind::constant>{});
-    if (p.influence == InfluenceKind::inverse_distance)
-      return with_check(std::integral_constant<InfluenceKind, InfluenceKind::inverse_distance>{});
+  if constexpr (Dim == 3 && std::is_same_v<Model, Lps>) {
+    if (p.influence == InfluenceKind::gaussian || failure_check(run) == FailureCheck::after_force) return false;
+    const IntactRun bonds(run, neighbors, broken, scratch);
+    return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
+      if constexpr (check.value != FailureCheck::after_force)
+        run_dilatation_lps_avx512<kind.value, check.value>(run, p, i, bonds, sum, lost);
+    });
   }
-#else
-  (void)run, (void)p, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)f;
 #endif
+  (void)run, (void)p, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)sum, (void)lost;
   return false;
 }
 
@@ -364,13 +516,18 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
 #pragma omp parallel
     {
       RunScratch scratch;
+      IntactScratch intact;
       SameBlockRun run{x, up, ctx.disc->volume.data(), bonds.reverse.data(), ctx.partial_volume_radius,
                        break_limit, break_limit, 0, 0, nullptr, nullptr, nullptr};
+      if (!ctx.uniform_volume.empty())
+        run.uniform_volume = ctx.uniform_volume[static_cast<std::size_t>(blocks[range.begin])];
 #pragma omp for schedule(static)
       for (std::size_t i = range.begin; i < range.end; ++i) {
         find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
         double sum = 0, lost = 0;
-        if (vector_path) {
+        const bool in_place =
+            vector_path && dilatation_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, sum, lost);
+        if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             if (fail_bonds)
@@ -443,7 +600,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
 #pragma omp parallel
     {
       RunScratch scratch;
-      PmbScratch intact;
+      IntactScratch intact;
       SameBlockRun run{x, up, ctx.disc->volume.data(), reverse, ctx.partial_volume_radius, break_limit,
                        after_force ? infinity : break_limit, 0, 0, nullptr, nullptr, nullptr};
       if (!ctx.uniform_volume.empty() && range.begin < range.end)
@@ -452,8 +609,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
       for (std::size_t i = range.begin; i < range.end; ++i) {
         find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
         double fi[3] = {0, 0, 0};
-        // The AVX-512 PMB loop reads and writes the bond list itself, without the run's scratch.
-        const bool in_place = vector_path && pmb_force_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, fi);
+        const bool in_place =
+            vector_path && force_in_place<Dim, Model>(run, p, fields, i, neighbors, broken, intact, fi);
         if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
