@@ -318,6 +318,28 @@ struct BondGroup {
   }
 };
 
+/// Runs body(group, j, lanes, b) for the listed bonds' groups of 8 in order (b the first bond, j its
+/// neighbours, lanes those inside the list), two groups per iteration while two are whole, so that the
+/// scheduler sees two independent chains of loads, transposes and Newton steps side by side (37³ PMB and LPS
+/// 2–4 % faster in 3 interleaved pairs of runs; the sums are added in the same order, so the same bits).
+template <class Body>
+[[gnu::always_inline]] inline void for_each_group(const SameBlockRun& run, const PointI& point, const IntactRun& bonds,
+                                                  Body&& body) {
+  std::uint64_t b = 0;
+  for (; b + 16 <= bonds.count; b += 16) {
+    const std::uint32_t* j = bonds.neighbor + b;
+    const BondGroup first(run, point, j), second(run, point, j + 8);
+    body(first, j, __mmask8{0xff}, b);
+    body(second, j + 8, __mmask8{0xff}, b + 8);
+  }
+  std::uint32_t tail[8];
+  for (; b < bonds.count; b += 8) {
+    const std::uint32_t* j;
+    const __mmask8 lanes = avx512::group_lanes(bonds.neighbor, b, bonds.count, tail, j);
+    body(BondGroup(run, point, j), j, lanes, b);
+  }
+}
+
 /// The 8 indices of `j` widened to 64 bits: a 32-bit gather would read point indices past 2³¹ as negative.
 [[gnu::always_inline]] inline __m512i wide_index(const std::uint32_t* j) {
   return _mm512_cvtepu32_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(j)));
@@ -368,11 +390,8 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
                              p.horizon);
   const __m512d break_limit = _mm512_set1_pd(run.break_limit);
   __m512d fx = _mm512_setzero_pd(), fy = fx, fz = fx;
-  std::uint32_t tail[8];
-  for (std::uint64_t b = 0; b < bonds.count; b += 8) {
-    const std::uint32_t* j;
-    const __mmask8 lanes = avx512::group_lanes(bonds.neighbor, b, bonds.count, tail, j);  // every bond listed is intact
-    const BondGroup g(run, point, j);
+  for_each_group(run, point, bonds, [&](const BondGroup& g, const std::uint32_t* j, __mmask8 lanes, std::uint64_t b)
+                                        __attribute__((always_inline)) {
     const __m512d cv = volume(run, j, nullptr, g.xi);
     // ω/|ξ|: 1/|ξ|², δ being in c, or 1/|ξ|
     const __m512d weight = Influence == InfluenceKind::inverse_distance ? g.inverse_xi * g.inverse_xi : g.inverse_xi;
@@ -382,7 +401,7 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
     bonds.mark_broken(breaking, b);
     const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
     fx += scale * g.dy[0], fy += scale * g.dy[1], fz += scale * g.dy[2];
-  }
+  });
   f[0] = _mm512_reduce_add_pd(fx), f[1] = _mm512_reduce_add_pd(fy), f[2] = _mm512_reduce_add_pd(fz);
 }
 
@@ -396,11 +415,8 @@ void run_dilatation_lps_avx512(const SameBlockRun& run, const MaterialParams& p,
   const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
   const __m512d break_limit = _mm512_set1_pd(run.break_limit);
   __m512d sum = _mm512_setzero_pd(), lost = sum;
-  std::uint32_t tail[8];
-  for (std::uint64_t b = 0; b < bonds.count; b += 8) {
-    const std::uint32_t* j;
-    const __mmask8 lanes = avx512::group_lanes(bonds.neighbor, b, bonds.count, tail, j);
-    const BondGroup g(run, point, j);
+  for_each_group(run, point, bonds, [&](const BondGroup& g, const std::uint32_t* j, __mmask8 lanes, std::uint64_t b)
+                                        __attribute__((always_inline)) {
     const __m512d cv = volume(run, j, nullptr, g.xi);
     // ω ξ: ξ, or δ (in cv)
     const __m512d term = (Influence == InfluenceKind::inverse_distance ? g.e : g.e * g.xi) * cv;
@@ -409,7 +425,7 @@ void run_dilatation_lps_avx512(const SameBlockRun& run, const MaterialParams& p,
     bonds.mark_broken(breaking, b);
     sum = _mm512_mask_add_pd(sum, counts, sum, term);
     if constexpr (Check != FailureCheck::none) lost = _mm512_mask_add_pd(lost, breaking, lost, term);
-  }
+  });
   sum_out = _mm512_reduce_add_pd(sum), lost_out = _mm512_reduce_add_pd(lost);
 }
 
@@ -427,11 +443,8 @@ void run_force_lps_avx512(const SameBlockRun& run, const MaterialParams& p, cons
   const __m512d alpha_d = _mm512_set1_pd(p.alpha_deviatoric), beta_v = _mm512_set1_pd(beta);
   const __m512d a_i = _mm512_set1_pd(s.inverse_m[i]), a_theta_i = _mm512_set1_pd(s.inverse_m[i] * s.theta[i]);
   __m512d fx = _mm512_setzero_pd(), fy = fx, fz = fx;
-  std::uint32_t tail[8];
-  for (std::uint64_t b = 0; b < bonds.count; b += 8) {
-    const std::uint32_t* j;
-    const __mmask8 lanes = avx512::group_lanes(bonds.neighbor, b, bonds.count, tail, j);
-    const BondGroup g(run, point, j);
+  for_each_group(run, point, bonds, [&](const BondGroup& g, const std::uint32_t* j, __mmask8 lanes, std::uint64_t b)
+                                        __attribute__((always_inline)) {
     const __m512i index = wide_index(j);
     const __m512d a_j = _mm512_i64gather_pd(index, s.inverse_m, 8);
     const __m512d theta_j = _mm512_i64gather_pd(index, s.theta, 8);
@@ -445,7 +458,7 @@ void run_force_lps_avx512(const SameBlockRun& run, const MaterialParams& p, cons
     bonds.mark_broken(breaking, b);
     const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
     fx += scale * g.dy[0], fy += scale * g.dy[1], fz += scale * g.dy[2];
-  }
+  });
   f[0] = _mm512_reduce_add_pd(fx), f[1] = _mm512_reduce_add_pd(fy), f[2] = _mm512_reduce_add_pd(fz);
 }
 PERIDOT_AVX512_END
