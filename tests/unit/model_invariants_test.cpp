@@ -255,6 +255,8 @@ TEST(ModelInvariantsTwoBlocks, InterfaceConservesMomentumAndIsConsistentWithEner
   p.bodies.push_back(right);
   Simulation sim(p);
   ASSERT_EQ(sim.model().ranges.size(), 2u);
+  // Both blocks have families across the interface: the loops look each point's same-block run up.
+  EXPECT_EQ(sim.model().family_in_block, (std::vector<std::uint8_t>{0, 0}));
   const Discretization& disc = sim.discretization();
   const VectorField u = random_displacement(disc, 2e-3 * 1e-3, 17);
   const Forces f = evaluate(sim, u);
@@ -299,6 +301,7 @@ TEST(UniformVolume, BroadcastVolumeGivesTheBitsOfTheReadVolume) {
     const Discretization& disc = sim.discretization();
     ASSERT_EQ(ctx.uniform_volume.size(), 1u);
     EXPECT_EQ(ctx.uniform_volume[0], disc.volume[0]);
+    EXPECT_EQ(ctx.family_in_block, (std::vector<std::uint8_t>{1}));  // one block: whole families
     BondList& bonds = const_cast<BondList&>(sim.bonds());
     for (std::uint64_t b = 0; b < bonds.num_bonds(); b += 7) bonds.broken[b] = 1;  // the masked lanes too
     const VectorField u = random_displacement(disc, 2e-3 * 1e-3, 23);

@@ -46,6 +46,18 @@ void calibrate_models(ModelContext& ctx) {
     else if (v != disc.volume[i]) v = 0;
   }
   for (double& v : ctx.uniform_volume) v = std::max(v, 0.0);  // a block without points: gather (never read)
+  // A family's blocks rise along its bonds (find_same_block_run): its first and last bonds tell.
+  const BondList& bonds = *ctx.bonds;
+  ctx.family_in_block.assign(ctx.params.size(), 1);
+  for (std::size_t b = 0; b < ctx.ranges.size(); ++b)
+    for (std::size_t i = ctx.ranges[b].begin; i < ctx.ranges[b].end; ++i) {
+      const std::uint64_t first = bonds.offsets[i], end = bonds.offsets[i + 1];
+      if (first < end && (disc.block[bonds.neighbors[first]] != disc.block[i] ||
+                          disc.block[bonds.neighbors[end - 1]] != disc.block[i])) {
+        ctx.family_in_block[b] = 0;
+        break;
+      }
+    }
 }
 
 KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& theta, const MaterialHistory* history) {
@@ -126,6 +138,14 @@ struct SameBlockRun {
   double* breaking;               ///< per bond of the run: set to 1 where it breaks now, else 0
   double uniform_volume = 0;      ///< V_j of every partner in the block (ModelContext::uniform_volume), 0: read V_j
 };
+
+/// Point i's run of bonds to its own block: its whole family where no family of the block leaves it
+/// (ModelContext::family_in_block), else looked up.
+inline void set_same_block_run(const BondList& bonds, const std::vector<std::int32_t>& blocks, std::size_t i,
+                               bool family_in_block, SameBlockRun& run) {
+  if (family_in_block) run.b_begin = bonds.offsets[i], run.b_end = bonds.offsets[i + 1];
+  else find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
+}
 
 /// Copies the run's neighbours and flags to `scratch` and points `run` at them.
 inline void load_run(RunScratch& scratch, const std::uint32_t* neighbors, const std::uint8_t* broken, SameBlockRun& run) {
@@ -534,9 +554,11 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
                        break_limit, break_limit, 0, 0, nullptr, nullptr, nullptr};
       if (!ctx.uniform_volume.empty())
         run.uniform_volume = ctx.uniform_volume[static_cast<std::size_t>(blocks[range.begin])];
+      const bool family_in_block =
+          !ctx.family_in_block.empty() && ctx.family_in_block[static_cast<std::size_t>(blocks[range.begin])];
 #pragma omp for schedule(static)
       for (std::size_t i = range.begin; i < range.end; ++i) {
-        find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
+        set_same_block_run(bonds, blocks, i, family_in_block, run);
         double sum = 0, lost = 0;
         const bool in_place =
             vector_path && dilatation_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, sum, lost);
@@ -616,11 +638,13 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
       IntactScratch intact;
       SameBlockRun run{x, up, ctx.disc->volume.data(), reverse, ctx.partial_volume_radius, break_limit,
                        after_force ? infinity : break_limit, 0, 0, nullptr, nullptr, nullptr};
-      if (!ctx.uniform_volume.empty() && range.begin < range.end)
+      if (!ctx.uniform_volume.empty())
         run.uniform_volume = ctx.uniform_volume[static_cast<std::size_t>(blocks[range.begin])];
+      const bool family_in_block =
+          !ctx.family_in_block.empty() && ctx.family_in_block[static_cast<std::size_t>(blocks[range.begin])];
 #pragma omp for schedule(static)
       for (std::size_t i = range.begin; i < range.end; ++i) {
-        find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
+        set_same_block_run(bonds, blocks, i, family_in_block, run);
         double fi[3] = {0, 0, 0};
         const bool in_place =
             vector_path && force_in_place<Dim, Model>(run, p, fields, i, neighbors, broken, intact, fi);

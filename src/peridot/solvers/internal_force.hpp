@@ -33,6 +33,10 @@ struct ModelContext {
   /// differ; set by calibrate_models. The AVX-512 PMB loop then broadcasts V_j instead of gathering it
   /// (the same value, so the same bits). Empty: every loop gathers.
   std::vector<double> uniform_volume;
+  /// Per block: 1 when no bond of its points leaves it (no interface), set by calibrate_models. The bond
+  /// loops then take a point's whole family as its same-block run instead of looking the run's ends up
+  /// (find_same_block_run: two dependent loads per point, usually cache misses). Empty: look them up.
+  std::vector<std::uint8_t> family_in_block;
 
   bool any_dilatation() const;
   bool any_damage() const;
@@ -41,7 +45,7 @@ struct ModelContext {
 };
 
 /// Per-point constants a model computes once from its reference families (lps_plastic's yield norm factor),
-/// after inverse_weighted_volume is set, and each block's uniform_volume.
+/// after inverse_weighted_volume is set, and each block's uniform_volume and family_in_block.
 void calibrate_models(ModelContext& ctx);
 
 /// The fields the kernels read, from θ and (for inelastic models) the history.
