@@ -371,13 +371,10 @@ struct PartnerVolume {
   double r;
   __m512d c, c_uniform_volume, outer, half_over_r;
 
-  PartnerVolume(const SameBlockRun& run, double constant)
+  PartnerVolume(const SameBlockRun& run, double constant, double horizon)
       : uniform(run.uniform_volume > 0), r(run.partial_volume_radius), c(_mm512_set1_pd(constant)),
-        c_uniform_volume(_mm512_set1_pd(constant * run.uniform_volume)),
-        outer(_mm512_set1_pd(0)), half_over_r(_mm512_set1_pd(r > 0 ? 0.5 / r : 0.0)) {}
-  PartnerVolume(const SameBlockRun& run, double constant, double horizon) : PartnerVolume(run, constant) {
-    outer = _mm512_set1_pd(horizon + r);
-  }
+        c_uniform_volume(_mm512_set1_pd(constant * run.uniform_volume)), outer(_mm512_set1_pd(horizon + r)),
+        half_over_r(_mm512_set1_pd(r > 0 ? 0.5 / r : 0.0)) {}
 
   /// `index`: wide_index(j), or nullptr to widen it only where the volumes are read.
   [[gnu::always_inline]] __m512d operator()(const SameBlockRun& run, const std::uint32_t* j, const __m512i* index,
@@ -400,22 +397,17 @@ template <FailureCheck Check>
   return Check == FailureCheck::before_force ? lanes & ~breaking : lanes;
 }
 
-/// PMB force on point i from its run: c ω e V_j/(|ξ||Y|) along Y per bond (Pmb::force_scalar of both ends),
-/// δ of the 1/|ξ| influence and c in one constant, and a uniform V_j too.
-template <InfluenceKind Influence, FailureCheck Check>
-void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i, const IntactRun& bonds,
-                          double f[3]) {
+/// The force on point i from its listed bonds, Σ carried(g, j) Y, with the pass's failure check: the bonds
+/// that break now get their flags, and carry nothing when they break before the force.
+template <FailureCheck Check, class Carried>
+[[gnu::always_inline]] inline void sum_bond_forces(const SameBlockRun& run, std::size_t i, const IntactRun& bonds,
+                                                   Carried&& carried_of, double f[3]) {
   const PointI point(run, i);
-  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.micromodulus * p.horizon : p.micromodulus,
-                             p.horizon);
   const __m512d break_limit = _mm512_set1_pd(run.break_limit);
   __m512d fx = _mm512_setzero_pd(), fy = fx, fz = fx;
   for_each_group(run, point, bonds, [&](const BondGroup& g, const std::uint32_t* j, __mmask8 lanes, std::uint64_t b)
                                         __attribute__((always_inline)) {
-    const __m512d cv = volume(run, j, nullptr, g.xi);
-    // ω/|ξ|: 1/|ξ|², δ being in c, or 1/|ξ|
-    const __m512d weight = Influence == InfluenceKind::inverse_distance ? g.inverse_xi * g.inverse_xi : g.inverse_xi;
-    const __m512d carried = (cv * weight) * (g.e * g.inverse_length);
+    const __m512d carried = carried_of(g, j);
     __mmask8 breaking;
     const __mmask8 carries = carrying_lanes<Check>(lanes, g, break_limit, breaking);
     bonds.mark_broken(breaking, b);
@@ -423,6 +415,21 @@ void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std:
     fx += scale * g.dy[0], fy += scale * g.dy[1], fz += scale * g.dy[2];
   });
   f[0] = _mm512_reduce_add_pd(fx), f[1] = _mm512_reduce_add_pd(fy), f[2] = _mm512_reduce_add_pd(fz);
+}
+
+/// PMB force on point i from its run: c ω e V_j/(|ξ||Y|) along Y per bond (Pmb::force_scalar of both ends),
+/// δ of the 1/|ξ| influence and c in one constant, and a uniform V_j too.
+template <InfluenceKind Influence, FailureCheck Check>
+void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i, const IntactRun& bonds,
+                          double f[3]) {
+  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.micromodulus * p.horizon : p.micromodulus,
+                             p.horizon);
+  sum_bond_forces<Check>(run, i, bonds, [&](const BondGroup& g, const std::uint32_t* j) __attribute__((always_inline)) {
+    const __m512d cv = volume(run, j, nullptr, g.xi);
+    // ω/|ξ|: 1/|ξ|², δ being in c, or 1/|ξ|
+    const __m512d weight = Influence == InfluenceKind::inverse_distance ? g.inverse_xi * g.inverse_xi : g.inverse_xi;
+    return (cv * weight) * (g.e * g.inverse_length);
+  }, f);
 }
 
 /// LPS dilatation sum Σ ω ξ e V_j over point i's run (δ of the 1/|ξ| influence in the volume constant), and
@@ -456,15 +463,11 @@ void run_dilatation_lps_avx512(const SameBlockRun& run, const MaterialParams& p,
 template <InfluenceKind Influence, FailureCheck Check>
 void run_force_lps_avx512(const SameBlockRun& run, const MaterialParams& p, const KernelFields& s, std::size_t i,
                           const IntactRun& bonds, double f[3]) {
-  const PointI point(run, i);
   const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
-  const __m512d break_limit = _mm512_set1_pd(run.break_limit);
   const double beta = p.alpha_volumetric - p.alpha_deviatoric * p.inverse_dilatation_factor;
   const __m512d alpha_d = _mm512_set1_pd(p.alpha_deviatoric), beta_v = _mm512_set1_pd(beta);
   const __m512d a_i = _mm512_set1_pd(s.inverse_m[i]), a_theta_i = _mm512_set1_pd(s.inverse_m[i] * s.theta[i]);
-  __m512d fx = _mm512_setzero_pd(), fy = fx, fz = fx;
-  for_each_group(run, point, bonds, [&](const BondGroup& g, const std::uint32_t* j, __mmask8 lanes, std::uint64_t b)
-                                        __attribute__((always_inline)) {
+  sum_bond_forces<Check>(run, i, bonds, [&](const BondGroup& g, const std::uint32_t* j) __attribute__((always_inline)) {
     const __m512i index = wide_index(j);
     const __m512d a_j = _mm512_i64gather_pd(index, s.inverse_m, 8);
     const __m512d theta_j = _mm512_i64gather_pd(index, s.theta, 8);
@@ -472,14 +475,8 @@ void run_force_lps_avx512(const SameBlockRun& run, const MaterialParams& p, cons
     const __m512d deviatoric = alpha_d * (a_i + a_j), volumetric = beta_v * (a_theta_i + a_j * theta_j);
     const __m512d t = Influence == InfluenceKind::inverse_distance ? deviatoric * (g.e * g.inverse_xi) + volumetric
                                                                    : deviatoric * g.e + volumetric * g.xi;
-    const __m512d carried = (t * cv) * g.inverse_length;
-    __mmask8 breaking;
-    const __mmask8 carries = carrying_lanes<Check>(lanes, g, break_limit, breaking);
-    bonds.mark_broken(breaking, b);
-    const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
-    fx += scale * g.dy[0], fy += scale * g.dy[1], fz += scale * g.dy[2];
-  });
-  f[0] = _mm512_reduce_add_pd(fx), f[1] = _mm512_reduce_add_pd(fy), f[2] = _mm512_reduce_add_pd(fz);
+    return (t * cv) * g.inverse_length;
+  }, f);
 }
 PERIDOT_AVX512_END
 #endif
@@ -491,9 +488,8 @@ bool force_in_place(const SameBlockRun& run, const MaterialParams& p, const Kern
                     const std::uint32_t* neighbors, std::uint8_t* broken, IntactScratch& scratch, double f[3]) {
 #if PERIDOT_AVX512_GATHER
   if constexpr (Dim == 3 && (std::is_same_v<Model, Pmb> || std::is_same_v<Model, Lps>)) {
-    if (p.influence == InfluenceKind::gaussian) return false;
-    const IntactRun bonds(run, neighbors, broken, scratch);
     return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
+      const IntactRun bonds(run, neighbors, broken, scratch);
       if constexpr (std::is_same_v<Model, Pmb>)
         run_force_pmb_avx512<kind.value, check.value>(run, p, i, bonds, f);
       else
@@ -513,9 +509,9 @@ bool dilatation_in_place(const SameBlockRun& run, const MaterialParams& p, std::
                          double& lost) {
 #if PERIDOT_AVX512_GATHER
   if constexpr (Dim == 3 && std::is_same_v<Model, Lps>) {
-    if (p.influence == InfluenceKind::gaussian || failure_check(run) == FailureCheck::after_force) return false;
-    const IntactRun bonds(run, neighbors, broken, scratch);
+    if (failure_check(run) == FailureCheck::after_force) return false;  // never: this pass checks before the force
     return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
+      const IntactRun bonds(run, neighbors, broken, scratch);
       if constexpr (check.value != FailureCheck::after_force)
         run_dilatation_lps_avx512<kind.value, check.value>(run, p, i, bonds, sum, lost);
     });
