@@ -137,13 +137,25 @@ struct SameBlockRun {
   const double* intact;           ///< per bond of the run: 1 intact, 0 broken
   double* breaking;               ///< per bond of the run: set to 1 where it breaks now, else 0
   double uniform_volume = 0;      ///< V_j of every partner in the block (ModelContext::uniform_volume), 0: read V_j
+  bool family_in_block = false;   ///< ModelContext::family_in_block of the block
 };
+
+/// The run of a point of `block` (its bonds still to be set, set_same_block_run), for the given limits.
+SameBlockRun block_run(const ModelContext& ctx, const double* u, std::int32_t block, double break_limit,
+                       double drop_limit) {
+  SameBlockRun run{ctx.disc->x.data(), u, ctx.disc->volume.data(), ctx.bonds->reverse.data(),
+                   ctx.partial_volume_radius, break_limit, drop_limit, 0, 0, nullptr, nullptr, nullptr};
+  const auto b = static_cast<std::size_t>(block);
+  if (!ctx.uniform_volume.empty()) run.uniform_volume = ctx.uniform_volume[b];
+  run.family_in_block = !ctx.family_in_block.empty() && ctx.family_in_block[b];
+  return run;
+}
 
 /// Point i's run of bonds to its own block: its whole family where no family of the block leaves it
 /// (ModelContext::family_in_block), else looked up.
 inline void set_same_block_run(const BondList& bonds, const std::vector<std::int32_t>& blocks, std::size_t i,
-                               bool family_in_block, SameBlockRun& run) {
-  if (family_in_block) run.b_begin = bonds.offsets[i], run.b_end = bonds.offsets[i + 1];
+                               SameBlockRun& run) {
+  if (run.family_in_block) run.b_begin = bonds.offsets[i], run.b_end = bonds.offsets[i + 1];
   else find_same_block_run(bonds, blocks, i, run.b_begin, run.b_end);
 }
 
@@ -546,15 +558,10 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
     {
       RunScratch scratch;
       IntactScratch intact;
-      SameBlockRun run{x, up, ctx.disc->volume.data(), bonds.reverse.data(), ctx.partial_volume_radius,
-                       break_limit, break_limit, 0, 0, nullptr, nullptr, nullptr};
-      if (!ctx.uniform_volume.empty())
-        run.uniform_volume = ctx.uniform_volume[static_cast<std::size_t>(blocks[range.begin])];
-      const bool family_in_block =
-          !ctx.family_in_block.empty() && ctx.family_in_block[static_cast<std::size_t>(blocks[range.begin])];
+      SameBlockRun run = block_run(ctx, up, blocks[range.begin], break_limit, break_limit);
 #pragma omp for schedule(static)
       for (std::size_t i = range.begin; i < range.end; ++i) {
-        set_same_block_run(bonds, blocks, i, family_in_block, run);
+        set_same_block_run(bonds, blocks, i, run);
         double sum = 0, lost = 0;
         const bool in_place =
             vector_path && dilatation_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, sum, lost);
@@ -632,15 +639,10 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
     {
       RunScratch scratch;
       IntactScratch intact;
-      SameBlockRun run{x, up, ctx.disc->volume.data(), reverse, ctx.partial_volume_radius, break_limit,
-                       after_force ? infinity : break_limit, 0, 0, nullptr, nullptr, nullptr};
-      if (!ctx.uniform_volume.empty())
-        run.uniform_volume = ctx.uniform_volume[static_cast<std::size_t>(blocks[range.begin])];
-      const bool family_in_block =
-          !ctx.family_in_block.empty() && ctx.family_in_block[static_cast<std::size_t>(blocks[range.begin])];
+      SameBlockRun run = block_run(ctx, up, blocks[range.begin], break_limit, after_force ? infinity : break_limit);
 #pragma omp for schedule(static)
       for (std::size_t i = range.begin; i < range.end; ++i) {
-        set_same_block_run(bonds, blocks, i, family_in_block, run);
+        set_same_block_run(bonds, blocks, i, run);
         double fi[3] = {0, 0, 0};
         const bool in_place =
             vector_path && force_in_place<Dim, Model>(run, p, fields, i, neighbors, broken, intact, fi);
