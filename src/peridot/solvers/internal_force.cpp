@@ -1,5 +1,7 @@
 #include "peridot/solvers/internal_force.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -89,14 +91,18 @@ inline double other_block_force_scalar(const MaterialParams& pj, const KernelFie
   return with_bond_model(pj.model, [&](auto model) { return model.force_scalar(pj, s, j, reverse_bond, e, xi, omega); });
 }
 
-/// The bond passes hand out a block's points in chunks of this many to whichever thread is free
-/// (schedule(dynamic)). On a shared VM one core at a time runs slower for a while; with an even split of the
-/// points (schedule(static)) the other thread then waits at the barrier. 1 M-point PMB, 2 threads against 1,
-/// 4 interleaved pairs each (bench/thread_scaling.py): an even split 1.84× (8.2 % more CPU time than one
-/// thread), a split by bond count 1.87× (6.4 %), chunks 1.92× (3.3 %). A chunk is about 60 000 bonds, so
-/// handing it out costs nothing measurable. A point's sums do not depend on the thread that takes it: the
-/// same bits for any thread count.
-constexpr int points_per_chunk = 512;
+/// The bond passes hand out a block's points in chunks to whichever thread is free (schedule(dynamic)). On a
+/// shared VM one core at a time runs slower for a while; with an even split of the points (schedule(static))
+/// the other thread then waits at the barrier. 1 M-point PMB, 2 threads against 1, 4 interleaved pairs each
+/// (bench/thread_scaling.py): an even split 1.84× (8.2 % more CPU time than one thread), a split by bond
+/// count 1.87× (6.4 %), chunks of 512 points 1.92× (3.3 %). 512 points are about 60 000 bonds, so handing a
+/// chunk out costs nothing measurable; small blocks take smaller chunks, at least 16 per thread, so that
+/// every thread gets some of a test deck's few hundred points. A point's sums do not depend on the thread
+/// that takes it: the same bits for any thread count.
+inline int points_per_chunk(BlockRange range) {
+  const std::size_t per_thread = (range.end - range.begin) / (16 * static_cast<std::size_t>(omp_get_max_threads()));
+  return static_cast<int>(std::clamp<std::size_t>(per_thread, 1, 512));
+}
 
 /// Critical stretch of a bond of a point of block `block`: the smaller of its two blocks'.
 inline double pair_critical_stretch(const ModelContext& ctx, const MaterialParams& p, std::int32_t block, std::uint32_t j) {
@@ -563,12 +569,13 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
     constexpr int Dim = decltype(dim)::value;
     using Model = decltype(model);
     const double break_limit = fail_bonds ? p.critical_stretch : std::numeric_limits<double>::infinity();
+    const int chunk = points_per_chunk(range);
 #pragma omp parallel
     {
       RunScratch scratch;
       IntactScratch intact;
       SameBlockRun run = block_run(ctx, up, blocks[range.begin], break_limit, break_limit);
-#pragma omp for schedule(dynamic, points_per_chunk)
+#pragma omp for schedule(dynamic, chunk)
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
         double sum = 0, lost = 0;
@@ -644,12 +651,13 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
     using Model = decltype(model);
     const double infinity = std::numeric_limits<double>::infinity();
     const double break_limit = fail_bonds ? p.critical_stretch : infinity;
+    const int chunk = points_per_chunk(range);
 #pragma omp parallel
     {
       RunScratch scratch;
       IntactScratch intact;
       SameBlockRun run = block_run(ctx, up, blocks[range.begin], break_limit, after_force ? infinity : break_limit);
-#pragma omp for schedule(dynamic, points_per_chunk)
+#pragma omp for schedule(dynamic, chunk)
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
         double fi[3] = {0, 0, 0};
