@@ -2,7 +2,7 @@
 """Two threads against one: the speed-up of bench_explicit, measured in interleaved pairs.
 
     /usr/bin/python3 bench/thread_scaling.py [--models pmb lps] [--n 100 100 100] [--steps 40] [--pairs 5]
-                                             [--bench build/bench/bench_explicit ...] [--policy active|default]
+                                             [--ceiling] [--policy active|default] [--bench BIN ...]
 
 On the 2-core VMs this project runs on, one run's rate moves by 10-20 % from one minute to the next, in
 runs of several minutes; a 1-thread run and a 2-thread run taken minutes apart can give anything from 1.6×
@@ -15,8 +15,8 @@ both thread counts give the same kinetic energy to the bit.
 With `--ceiling`, each pair is followed by two 1-thread runs started together, as separate processes: two
 cores' throughput with no sharing between threads at all. 2 × (1-thread time) / (their mean time) is what
 this machine gives two independent copies of the same work: the ceiling of the 2-thread speed-up, short
-of data the threads share in the L3. On the 2-core VMs it is well below 2: the two virtual cores slow each
-other down even for a problem that fits in the L2.
+of data the threads share in the L3. On the 2-core VMs it is about 1.9, not 2: the two virtual cores slow
+each other down, even for a problem that fits in the L2.
 """
 import argparse
 import json
@@ -27,23 +27,26 @@ import subprocess
 DT = "1.3779225373530762e-07"  # the 1 M-point comparison's Δt (compare_lammps.py at 100³)
 
 
-def run(bench, model, n, steps, threads, policy):
+def command(bench, model, n, steps, threads, policy):
+    """bench_explicit's command line and environment for one run."""
     env = dict(os.environ)
     if policy == "active":
         env["OMP_WAIT_POLICY"] = "active"
     else:
         env.pop("OMP_WAIT_POLICY", None)
     cmd = [bench, "--model", model, "--n", *map(str, n), "--steps", str(steps), "--threads", str(threads), "--dt", DT]
+    return cmd, env
+
+
+def run(bench, model, n, steps, threads, policy):
+    cmd, env = command(bench, model, n, steps, threads, policy)
     out = subprocess.run(cmd, capture_output=True, text=True, env=env, check=True).stdout
     return json.loads(out.strip().splitlines()[-1])
 
 
 def run_together(bench, model, n, steps, policy):
     """Two 1-thread runs of the same problem started at the same time: their loop times."""
-    env = dict(os.environ)
-    if policy == "active":
-        env["OMP_WAIT_POLICY"] = "active"
-    cmd = [bench, "--model", model, "--n", *map(str, n), "--steps", str(steps), "--threads", "1", "--dt", DT]
+    cmd, env = command(bench, model, n, steps, 1, policy)
     procs = [subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, env=env)
              for _ in range(2)]
     times = []
