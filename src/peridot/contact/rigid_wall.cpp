@@ -9,7 +9,7 @@
 
 #include "peridot/core/error.hpp"
 #include "peridot/materials/registry.hpp"
-#include "peridot/solvers/simulation.hpp"
+#include "peridot/core/deterministic_sum.hpp"
 
 namespace peridot {
 

@@ -71,13 +71,19 @@ struct StressFields {
   }
 };
 
-/// One block of correspondence points: its law and one History per point (index i − range.begin).
+/// One block of correspondence points: its law and one History per point (index i − range.begin): the
+/// committed one (`history`) and the one of the last trial stress update (`trial_history`, see
+/// trial_block_stress).
 template <ConstitutiveLaw Law>
 struct CorrespondenceBlock {
   Law law;
   BlockRange range;
   std::vector<typename Law::History> history;
-  CorrespondenceBlock(Law l, BlockRange r) : law(std::move(l)), range(r), history(r.end - r.begin) {}
+  std::vector<typename Law::History> trial_history;
+  CorrespondenceBlock(Law l, BlockRange r)
+      : law(std::move(l)), range(r), history(r.end - r.begin), trial_history(r.end - r.begin) {}
+  /// Accepts the last trial_block_stress: its history becomes the committed one.
+  void commit_history() { std::swap(history, trial_history); }
 };
 
 /// Inelastic work of one step per unit reference volume (J/m³): the work of the stress on the part of the
@@ -101,16 +107,19 @@ inline double elastic_energy_density(const Mat3& tau, double jacobian, double bu
   return jacobian * (p * p / (2 * bulk_modulus) + double_contraction(S, S) / (4 * shear_modulus));
 }
 
-/// The stress step for every point of the block, from the kinematics of this step (u^{n+1}, v^{n+1/2}).
-/// When `inelastic_work` is given (one entry per point of the problem), ΔW_in of every point of the block
-/// is added to it (inelastic_work_increment). Throws NumericalError naming the lowest-numbered point whose
-/// F is inverted (det F ≤ 0) or whose law returned a non-finite stress.
+namespace detail {
+
+/// The stress step of every point of a block from (R, V, τ) of `from` and the histories `from_history`
+/// into `to` and `to_history` (the same objects for an update in place). `inelastic_work`, when given,
+/// receives ΔW_in per point: added to it (accumulate) or stored.
 template <ConstitutiveLaw Law>
-void update_block_stress(const CorrespondenceContext& ctx, const KinematicFields& kin, double dt,
-                         CorrespondenceBlock<Law>& block, StressFields& s, double* inelastic_work = nullptr) {
+void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& kin, double dt, const Law& law,
+                       BlockRange range, const typename Law::History* from_history,
+                       typename Law::History* to_history, const StressFields& from, StressFields& to,
+                       double* inelastic_work, bool accumulate) {
   constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
   std::size_t first_inverted = none, first_nonfinite = none;
-  const std::size_t begin = block.range.begin, end = block.range.end;
+  const std::size_t begin = range.begin, end = range.end;
 #pragma omp parallel for schedule(static) reduction(min : first_inverted, first_nonfinite)
   for (std::size_t i = begin; i < end; ++i) {
     const Mat3 F = kin.deformation_gradient.get(i);
@@ -120,22 +129,26 @@ void update_block_stress(const CorrespondenceContext& ctx, const KinematicFields
       first_inverted = std::min(first_inverted, i);
       continue;
     }
-    PolarState polar{s.rotation.get(i), s.left_stretch.get(i)};
-    const Mat3 tau_old = s.unrotated_stress.get(i);
+    PolarState polar{from.rotation.get(i), from.left_stretch.get(i)};
+    const Mat3 tau_old = from.unrotated_stress.get(i);
     Mat3 tau = tau_old, d;
-    const Mat3 sigma = material_point_step(block.law, F, F_rate, dt, polar, tau, block.history[i - begin], &d);
+    typename Law::History history = from_history[i - begin];
+    const Mat3 sigma = material_point_step(law, F, F_rate, dt, polar, tau, history, &d);
+    to_history[i - begin] = history;
     if (!sigma.allFinite()) {
       first_nonfinite = std::min(first_nonfinite, i);
       continue;
     }
-    if (inelastic_work)
-      inelastic_work[i] += inelastic_work_increment(tau_old, tau, d, dt, block.law.shear_modulus(),
-                                                    (F - 0.5 * dt * F_rate).determinant());
-    s.rotation.set(i, polar.rotation);
-    s.left_stretch.set(i, polar.left_stretch);
-    s.unrotated_stress.set(i, tau);
-    s.cauchy_stress.set(i, sigma);
-    s.force_tensor.set(i, first_piola_kirchhoff(F, sigma) * kin.shape_inverse.get(i));
+    if (inelastic_work) {
+      const double work = inelastic_work_increment(tau_old, tau, d, dt, law.shear_modulus(),
+                                                   (F - 0.5 * dt * F_rate).determinant());
+      inelastic_work[i] = accumulate ? inelastic_work[i] + work : work;
+    }
+    to.rotation.set(i, polar.rotation);
+    to.left_stretch.set(i, polar.left_stretch);
+    to.unrotated_stress.set(i, tau);
+    to.cauchy_stress.set(i, sigma);
+    to.force_tensor.set(i, first_piola_kirchhoff(F, sigma) * kin.shape_inverse.get(i));
   }
   const std::size_t bad = std::min(first_inverted, first_nonfinite);
   if (bad == none) return;
@@ -147,6 +160,32 @@ void update_block_stress(const CorrespondenceContext& ctx, const KinematicFields
                                : std::string("got a non-finite stress from its constitutive law");
   throw NumericalError(fmt::format("correspondence model: point {} (input id {}) at ({:g}, {:g}, {:g}) m {}", bad,
                                    id, disc.x(bad, 0), disc.x(bad, 1), disc.x(bad, 2), what));
+}
+
+}  // namespace detail
+
+/// The stress step for every point of the block, from the kinematics of this step (u^{n+1}, v^{n+1/2}),
+/// in place: R, V, τ of `s` and the block's history advance to n+1. When `inelastic_work` is given (one
+/// entry per point of the problem), ΔW_in of every point of the block is added to it
+/// (inelastic_work_increment). Throws NumericalError naming the lowest-numbered point whose F is inverted
+/// (det F ≤ 0) or whose law returned a non-finite stress.
+template <ConstitutiveLaw Law>
+void update_block_stress(const CorrespondenceContext& ctx, const KinematicFields& kin, double dt,
+                         CorrespondenceBlock<Law>& block, StressFields& s, double* inelastic_work = nullptr) {
+  detail::block_stress_step(ctx, kin, dt, block.law, block.range, block.history.data(), block.history.data(), s, s,
+                            inelastic_work, true);
+}
+
+/// The same step as a trial that changes no committed state: from R, V, τ of `committed` and the block's
+/// committed history into `trial` and block.trial_history, with ΔW_in of each point stored (not added) in
+/// `inelastic_work`. A solver may run it any number of times for one step; accepting it is
+/// block.commit_history() and swapping R, V, τ of trial and committed (the bits of update_block_stress).
+template <ConstitutiveLaw Law>
+void trial_block_stress(const CorrespondenceContext& ctx, const KinematicFields& kin, double dt,
+                        CorrespondenceBlock<Law>& block, const StressFields& committed, StressFields& trial,
+                        double* inelastic_work) {
+  detail::block_stress_step(ctx, kin, dt, block.law, block.range, block.history.data(), block.trial_history.data(),
+                            committed, trial, inelastic_work, false);
 }
 
 }  // namespace peridot::correspondence

@@ -549,13 +549,44 @@ struct Parser {
   // -- solver and output -------------------------------------------------------------------------
 
   void parse_solver(const Value& v) {
-    MapReader r(ctx, v.node, v.key_pos, "solver", deck_section("solver").keys);
     p.solver.pos = v.key_pos;
+    const YAML::Node type = v.node.IsMap() ? v.node["type"] : YAML::Node();
+    if (type && type.IsScalar() && type.Scalar() == "relaxation") {
+      MapReader r(ctx, v.node, v.key_pos, "solver", deck_section("solver (type: relaxation)").keys);
+      p.solver.kind = SolverKind::relaxation;
+      p.solver.end_time = r["end_time"].number;
+      p.solver.load_steps = r["load_steps"].integer;
+      p.solver.ramp = r["ramp"].boolean;
+      p.solver.tolerance = r["tolerance"].number;
+      p.solver.max_iterations = r["max_iterations"].integer;
+      p.solver.density_factor = r["density_factor"].number;
+      return;
+    }
+    MapReader r(ctx, v.node, v.key_pos, "solver", deck_section("solver").keys);
     p.solver.end_time = r.optional_number("end_time");
     if (r.given("num_steps")) p.solver.num_steps = r["num_steps"].integer;
     p.solver.time_step = r.optional_number("time_step");
     p.solver.safety_factor = r["safety_factor"].number;
     p.solver.damping = r["damping"].number;
+  }
+
+  /// What a static solution cannot have: velocities given as initial or boundary conditions.
+  void check_relaxation_loads() {
+    if (p.solver.kind != SolverKind::relaxation) return;
+    for (const InitialConditionSpec& ic : p.initial_conditions)
+      if (ic.kind == InitialConditionSpec::Kind::velocity)
+        ctx.error(ic.pos, "initial_conditions",
+                  "an initial velocity has no meaning for solver type 'relaxation' (static equilibrium); remove it "
+                  "or use the explicit solver");
+    for (const BoundaryConditionSpec& bc : p.boundary_conditions)
+      if (bc.kind == BoundaryConditionSpec::Kind::velocity)
+        ctx.error(bc.pos, "boundary_conditions",
+                  "a prescribed velocity has no meaning for solver type 'relaxation' (static equilibrium); prescribe "
+                  "the displacement instead");
+    for (const RigidWallSpec& w : p.rigid_walls)
+      if (w.speed != 0)
+        ctx.error(w.pos, "rigid_walls." + w.name,
+                  "a moving wall is not supported with solver type 'relaxation'; give it speed 0");
   }
 
   void parse_output(const Value& v) {
@@ -599,6 +630,7 @@ struct Parser {
     parse_body_forces(r["body_forces"]);
     parse_rigid_walls(r["rigid_walls"]);
     if (r.given("solver")) parse_solver(r["solver"]);
+    check_relaxation_loads();
     if (r.given("decomposition")) {
       MapReader d(ctx, r["decomposition"].node, r["decomposition"].key_pos, "decomposition",
                   deck_section("decomposition").keys);

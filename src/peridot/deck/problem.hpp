@@ -148,15 +148,26 @@ struct RigidWallSpec {
   WallContactKind contact = WallContactKind::penalty;
 };
 
+/// The time integrator (solvers/time_integrator.hpp): explicit dynamics (velocity Verlet) or adaptive
+/// dynamic relaxation to static equilibrium in load steps.
+enum class SolverKind { explicit_dynamics, relaxation };
+
 struct SolverSpec {
   SourcePos pos;
-  std::optional<double> end_time;        ///< s
+  SolverKind kind = SolverKind::explicit_dynamics;
+  std::optional<double> end_time;        ///< s; relaxation: the time of the last load step
   std::optional<std::int64_t> num_steps;
   std::optional<double> time_step;       ///< fixed Δt (s); otherwise safety_factor × stable
   double safety_factor = 0.8;
   /// Mass-proportional viscous damping c (1/s): free velocities decay as e^{−ct}. 0 = none. Used to
   /// relax to static equilibrium (quasi-static loading); it removes energy the history does not count.
   double damping = 0;
+  // Relaxation (solvers/dynamic_relaxation.hpp).
+  std::int64_t load_steps = 1;           ///< equilibria from load factor 1/N to 1
+  bool ramp = true;                      ///< loads scaled by the load factor k/N (else taken as given at t_k)
+  double tolerance = 1e-8;               ///< relative force residual at equilibrium (-)
+  std::int64_t max_iterations = 100000;  ///< per equilibrium
+  double density_factor = 5;             ///< fictitious density = this × the Gerschgorin bound (-)
 };
 
 struct ProbeSpec {

@@ -272,11 +272,22 @@ void emit_solver_and_output(YAML::Emitter& out, const Problem& p) {
   out << YAML::Key << "method" << YAML::Value << partition[static_cast<int>(p.partition)];
   out << YAML::EndMap;
   out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
-  if (p.solver.end_time) out << YAML::Key << "end_time" << YAML::Value << number(*p.solver.end_time);
-  if (p.solver.num_steps) out << YAML::Key << "num_steps" << YAML::Value << *p.solver.num_steps;
-  if (p.solver.time_step) out << YAML::Key << "time_step" << YAML::Value << number(*p.solver.time_step);
-  out << YAML::Key << "safety_factor" << YAML::Value << number(p.solver.safety_factor);
-  out << YAML::Key << "damping" << YAML::Value << number(p.solver.damping);
+  if (p.solver.kind == SolverKind::relaxation) {
+    out << YAML::Key << "type" << YAML::Value << "relaxation";
+    out << YAML::Key << "load_steps" << YAML::Value << p.solver.load_steps;
+    out << YAML::Key << "end_time" << YAML::Value << number(p.solver.end_time.value_or(1.0));
+    out << YAML::Key << "ramp" << YAML::Value << p.solver.ramp;
+    out << YAML::Key << "tolerance" << YAML::Value << number(p.solver.tolerance);
+    out << YAML::Key << "max_iterations" << YAML::Value << p.solver.max_iterations;
+    out << YAML::Key << "density_factor" << YAML::Value << number(p.solver.density_factor);
+  } else {
+    out << YAML::Key << "type" << YAML::Value << "explicit";
+    if (p.solver.end_time) out << YAML::Key << "end_time" << YAML::Value << number(*p.solver.end_time);
+    if (p.solver.num_steps) out << YAML::Key << "num_steps" << YAML::Value << *p.solver.num_steps;
+    if (p.solver.time_step) out << YAML::Key << "time_step" << YAML::Value << number(*p.solver.time_step);
+    out << YAML::Key << "safety_factor" << YAML::Value << number(p.solver.safety_factor);
+    out << YAML::Key << "damping" << YAML::Value << number(p.solver.damping);
+  }
   out << YAML::EndMap;
 
   const OutputSpec& o = p.output;

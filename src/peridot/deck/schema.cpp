@@ -171,6 +171,12 @@ std::vector<KeySpec> with_node_set(std::vector<KeySpec> keys, bool required) {
   return keys;
 }
 
+KeySpec solver_type_key() {
+  return {.key = "type", .type = VT::choice, .default_yaml = "explicit",
+          .description = "explicit: dynamics by velocity Verlet; relaxation: static equilibrium in load steps",
+          .choices = {"explicit", "relaxation"}};
+}
+
 std::vector<SectionSpec> make_sections() {
   std::vector<SectionSpec> s;
   s.push_back({"", "top level of the deck",
@@ -184,7 +190,7 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "boundary_conditions", .type = VT::sequence, .description = "prescribed displacement or velocity"},
                 {.key = "body_forces", .type = VT::sequence, .description = "force per volume"},
                 {.key = "rigid_walls", .type = VT::sequence, .description = "rigid frictionless planes the points cannot cross"},
-                {.key = "solver", .type = VT::mapping, .description = "explicit time integration", .required = true},
+                {.key = "solver", .type = VT::mapping, .description = "explicit dynamics or quasi-static relaxation", .required = true},
                 {.key = "decomposition", .type = VT::mapping, .description = "how a distributed run (mpirun) splits the points"},
                 {.key = "output", .type = VT::mapping, .description = "Exodus fields, CSV history, progress"}}});
   s.push_back({"discretization", "the point lattice",
@@ -299,8 +305,10 @@ std::vector<SectionSpec> make_sections() {
                                 "must lie on the plane at t = 0 (its nearest points half a spacing from it) and the wall must be "
                                 "at rest",
                  .choices = {"penalty", "symmetry"}}}});
-  s.push_back({"solver", "explicit central-difference (velocity Verlet) time integration",
-               {{.key = "end_time", .unit = Unit::time, .range = positive, .description = "simulated time (s); or num_steps",
+  s.push_back({"solver", "the solver: explicit dynamics (velocity Verlet, the default) or, with type: relaxation, "
+               "quasi-static load steps (next section)",
+               {solver_type_key(),
+                {.key = "end_time", .unit = Unit::time, .range = positive, .description = "simulated time (s); or num_steps",
                  .required = true, .one_of = "duration"},
                 {.key = "num_steps", .type = VT::integer, .range = at_least_one, .description = "number of steps; or end_time",
                  .required = true, .one_of = "duration"},
@@ -311,6 +319,29 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "damping", .unit = Unit::rate, .default_yaml = "0", .range = {0, infinity, false, true},
                  .description = "mass-proportional viscous damping c (1/s): free velocities decay as e^(−ct); "
                                 "for relaxing to static equilibrium (the energy it removes is not in the history)"}}});
+  s.push_back({"solver (type: relaxation)",
+               "adaptive dynamic relaxation (Kilic & Madenci 2010) to static equilibrium in load steps; after each "
+               "equilibrium the bonds over their critical stretch break and the step is relaxed again until none "
+               "breaks; one Exodus frame and history row per load step (docs/algorithms.md)",
+               {solver_type_key(),
+                {.key = "load_steps", .type = VT::integer, .default_yaml = "1", .range = at_least_one,
+                 .description = "number of load steps N; step k is solved at t_k = k·end_time/N"},
+                {.key = "end_time", .unit = Unit::time, .default_yaml = "1 s", .range = positive,
+                 .description = "time of the last load step (s): where time-dependent loads are evaluated, and the "
+                                "real time over which viscous and rate-dependent materials relax"},
+                {.key = "ramp", .type = VT::boolean, .default_yaml = "true",
+                 .description = "scale prescribed displacements and body forces by the load factor k/N (false: take "
+                                "them as the expressions give them at t_k)"},
+                {.key = "tolerance", .default_yaml = "1e-8", .range = positive,
+                 .description = "equilibrium when the force residual on the free dofs is at most this fraction of the "
+                                "largest of the support reactions, the applied body force and the step's initial "
+                                "residual (Euclidean norms of f V)"},
+                {.key = "max_iterations", .type = VT::integer, .default_yaml = "100000", .range = at_least_one,
+                 .description = "iterations allowed for one equilibrium; more ends the run with an error naming the "
+                                "residual reached"},
+                {.key = "density_factor", .default_yaml = "5", .range = {1, infinity, false, true},
+                 .description = "fictitious density as a multiple of the Gerschgorin bound ¼ Σ V c/ξ; raise it if the "
+                                "iterations diverge"}}});
   s.push_back({"decomposition", "the split of the points over the ranks of a distributed run (docs/parallel.md); "
                "results are the same bits whatever the split",
                {{.key = "method", .type = VT::choice, .default_yaml = "rcb",

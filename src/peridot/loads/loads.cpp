@@ -64,6 +64,14 @@ void Loads::apply_displacement_conditions(double t, double dt, VectorField& u, V
   }
 }
 
+void Loads::apply_displacement_conditions(double t, double factor, VectorField& u) const {
+  for (const Prescribed& c : conditions_) {
+    if (c.kind != DofKind::displacement) continue;
+    for (std::uint32_t i : *c.points)
+      u(i, c.component) = factor * c.value(disc_.x(i, 0), disc_.x(i, 1), disc_.x(i, 2), t);
+  }
+}
+
 void Loads::update_body_force(double t, VectorField& b) {
   if (body_forces_.empty() || (body_force_evaluated_ && !body_force_time_dependent_)) return;
   std::fill(b.data(), b.data() + 3 * b.size(), 0.0);

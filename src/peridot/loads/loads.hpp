@@ -25,6 +25,8 @@ class Loads {
   void apply_velocity_conditions(double t, VectorField& v) const;
   /// Prescribed displacements at time t; their velocity becomes (u(t) − u_old)/Δt.
   void apply_displacement_conditions(double t, double dt, VectorField& u, VectorField& v) const;
+  /// Prescribed displacements at time t scaled by `factor` (quasi-static load steps); velocities untouched.
+  void apply_displacement_conditions(double t, double factor, VectorField& u) const;
   /// Body force density at time t (evaluated once when no expression depends on t).
   void update_body_force(double t, VectorField& b);
 

@@ -74,7 +74,9 @@ struct CorrespondenceBlocks::Impl {
   const ModelContext* model = nullptr;
   CorrespondenceContext ctx;
   KinematicFields kin;
-  StressFields stress;
+  StressFields stress;     ///< the last evaluate(): trial R, V, τ, and σ and P K⁻¹ (what the force reads)
+  StressFields committed;  ///< R, V, τ at the last commit() (σ and P K⁻¹ unused)
+  std::vector<double> inelastic_work;  ///< per point: ΔW_in of the last evaluate() (J/m³)
   std::vector<AnyBlock> blocks;
   std::vector<std::size_t> block_index;  ///< the ModelContext block of each entry of `blocks`
   const Halo* halo = nullptr;
@@ -138,6 +140,8 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   }
   m.damped = std::any_of(m.ctx.hourglass_damping.begin(), m.ctx.hourglass_damping.end(), [](double c) { return c != 0; });
   m.stress.resize(n);
+  m.committed.resize(n);
+  m.inelastic_work.assign(n, 0.0);
   m.kin.shape_inverse = TensorField(n);
   m.kin.deformation_gradient.assign(n, Mat3::Identity());
   m.kin.deformation_gradient_rate = TensorField(n);
@@ -150,16 +154,16 @@ CorrespondenceBlocks::~CorrespondenceBlocks() = default;
 
 bool CorrespondenceBlocks::empty() const { return impl_->blocks.empty(); }
 
-void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField& v, double dt, VectorField& f,
-                                         MaterialHistory& history) {
+void CorrespondenceBlocks::evaluate(const VectorField& u, const VectorField& v, double dt, VectorField& f) {
   Impl& m = *impl_;
   std::exception_ptr failure;
   try {
     for (AnyBlock& any : m.blocks)
       std::visit([&](auto& block) { compute_kinematics(m.ctx, u, v, m.kin, block.range); }, any);
     for (AnyBlock& any : m.blocks)
-      std::visit([&](auto& block) { update_block_stress(m.ctx, m.kin, dt, block, m.stress, history.dissipation.data()); },
-                 any);
+      std::visit([&](auto& block) {
+        trial_block_stress(m.ctx, m.kin, dt, block, m.committed, m.stress, m.inelastic_work.data());
+      }, any);
   } catch (const NumericalError&) {
     failure = std::current_exception();  // after the exchange: the other ranks wait for this rank's messages
   }
@@ -173,6 +177,23 @@ void CorrespondenceBlocks::compute_force(const VectorField& u, const VectorField
     std::visit([&](auto& block) {
       compute_correspondence_force(m.ctx, m.kin, m.stress, u, v, f, block.range, &m.hourglass_force,
                                    m.ctx.mirror.planes.empty() ? nullptr : &m.mirror_force);
+    }, any);
+}
+
+void CorrespondenceBlocks::commit(const VectorField& u, const VectorField& v, MaterialHistory& history) {
+  Impl& m = *impl_;
+  // The trial R, V, τ become the committed ones; the stale values left in m.stress are overwritten at
+  // every point of every block by the next evaluate(), before anything reads them.
+  std::swap(m.committed.rotation, m.stress.rotation);
+  std::swap(m.committed.left_stretch, m.stress.left_stretch);
+  std::swap(m.committed.unrotated_stress, m.stress.unrotated_stress);
+  double* dissipation = history.dissipation.data();
+  for (AnyBlock& any : m.blocks)
+    std::visit([&](auto& block) {
+      block.commit_history();
+      const BlockRange range = block.range;
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = range.begin; i < range.end; ++i) dissipation[i] += m.inelastic_work[i];
     }, any);
   if (m.ctx.mirror.active) release_mirror_planes(v);
 
@@ -246,7 +267,7 @@ void CorrespondenceBlocks::strain_energy_density(std::vector<double>& W) const {
     const BlockRange range = std::visit([](auto& block) { return block.range; }, m.blocks[k]);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i)
-      W[i] = elastic_energy_density(m.stress.unrotated_stress.get(i), m.kin.deformation_gradient.get(i).determinant(),
+      W[i] = elastic_energy_density(m.committed.unrotated_stress.get(i), m.kin.deformation_gradient.get(i).determinant(),
                                     p.elastic.bulk_modulus, p.elastic.shear_modulus);
   }
 }

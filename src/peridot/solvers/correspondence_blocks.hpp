@@ -37,11 +37,16 @@ class CorrespondenceBlocks {
 
   bool empty() const;
 
-  /// Kinematics of (u, v), the stress update over Δt (Δt = 0: none) and the force density f (N/m³) of
-  /// every correspondence point; other points' f untouched. Adds each point's inelastic work to
-  /// history.dissipation and accumulates the hourglass work. Throws NumericalError naming the point.
-  void compute_force(const VectorField& u, const VectorField& v, double dt, VectorField& f,
-                     MaterialHistory& history);
+  /// Kinematics of (u, v), a trial stress update over Δt from the committed stress (Δt = 0: none) and the
+  /// force density f (N/m³) of every correspondence point; other points' f untouched. Changes no
+  /// committed state: it may run any number of times for one step (relaxation iterations). Throws
+  /// NumericalError naming the point.
+  void evaluate(const VectorField& u, const VectorField& v, double dt, VectorField& f);
+  /// Accepts the last evaluate(): its stress and J2 history become the committed ones, each point's
+  /// inelastic work is added to history.dissipation, the hourglass work over the step (from the last
+  /// commit's u to this u) is accumulated, and symmetry planes whose bodies leave them are released (from
+  /// v). Collective when there are symmetry planes.
+  void commit(const VectorField& u, const VectorField& v, MaterialHistory& history);
 
   /// Stored elastic energy density (J/m³, per reference volume) into W at every correspondence point.
   void strain_energy_density(std::vector<double>& W) const;
@@ -64,7 +69,7 @@ class CorrespondenceBlocks {
 
  private:
   /// Releases each symmetry plane whose bodies move away from it (momentum along n > 0, from v) while its
-  /// normal force on them is tensile (mirror_bonds.hpp); after every force gather.
+  /// normal force on them is tensile (mirror_bonds.hpp); at every commit.
   void release_mirror_planes(const VectorField& v);
 
   struct Impl;

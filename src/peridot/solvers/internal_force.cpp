@@ -731,13 +731,13 @@ void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u
   });
 }
 
-double stable_time_step(const ModelContext& ctx) {
+void stiffness_bound(const ModelContext& ctx, std::vector<double>& k) {
   const double* x = ctx.disc->x.data();
   const BondList& bonds = *ctx.bonds;
-  double dt = std::numeric_limits<double>::infinity();
+  k.assign(ctx.disc->num_points(), 0.0);
   for_each_block_geometry(ctx, [&](auto dim, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
-#pragma omp parallel for schedule(static) reduction(min : dt)
+#pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
       double stiffness = 0;
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
@@ -745,6 +745,21 @@ double stable_time_step(const ModelContext& ctx) {
         const double xi = bond_length<Dim>(x, i, j);
         stiffness += neighbor_volume(ctx, i, j, xi) * p.stable_micromodulus / xi;
       }
+      k[i] = stiffness;
+    }
+  });
+}
+
+double stable_time_step(const ModelContext& ctx) {
+  std::vector<double> k;
+  stiffness_bound(ctx, k);
+  double dt = std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < ctx.ranges.size(); ++b) {
+    const BlockRange range = ctx.ranges[b];
+    const MaterialParams& p = ctx.params[b];
+#pragma omp parallel for schedule(static) reduction(min : dt)
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      const double stiffness = k[i];
       if (stiffness == 0) continue;
       double dt_i = std::sqrt(2 * p.density / stiffness);
       // A dashpot c_v beside each spring c (correspondence hourglass damping): central differences with
@@ -757,7 +772,7 @@ double stable_time_step(const ModelContext& ctx) {
       }
       dt = std::min(dt, dt_i);
     }
-  });
+  }
   return dt;
 }
 

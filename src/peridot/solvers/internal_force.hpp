@@ -82,6 +82,11 @@ void commit_history(const ModelContext& ctx, const VectorField& u, const std::ve
 void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                                    std::vector<double>& W, const MaterialHistory* history = nullptr);
 
+/// Per point, the Gerschgorin-type stiffness bound Σ_j V_j c/ξ_ij (N/m⁶ · m² = N/m⁴ per unit
+/// displacement) with c the block's stable_micromodulus: the sums of the stable time step, and the
+/// fictitious density of dynamic relaxation. Ghosts get 0.
+void stiffness_bound(const ModelContext& ctx, std::vector<double>& k);
+
 /// Silling–Askari stable time step min_i √(2ρ_i / Σ_j V_j c/ξ_ij) (s), before any safety factor.
 double stable_time_step(const ModelContext& ctx);
 

@@ -86,11 +86,7 @@ std::string describe_setup(const Simulation& sim) {
                        comm.min(owned), comm.max(owned), comm.max(ghosts));
     out << fmt::format("memory           {:.1f} MiB on the largest rank (points and bonds)\n", comm.max(memory) / (1 << 20));
   }
-  out << fmt::format("stable time step {:.6g} s (Silling–Askari)\n", sim.stable_time_step());
-  out << fmt::format("time step        {:.6g} s{}\n", sim.time_step(),
-                     sim.time_step() > sim.stable_time_step() ? "  WARNING: above the stable time step" : "");
-  out << fmt::format("steps            {} (end time {:.6g} s)\n", sim.total_steps(),
-                     sim.time_step() * static_cast<double>(sim.total_steps()));
+  out << sim.integrator().describe();
   return out.str();
 }
 
@@ -135,6 +131,7 @@ class History {
                                         "momentum_x", "momentum_y", "momentum_z", "max_damage", "dissipated_energy",
                                         "fragments"};
     if (sim.has_correspondence()) columns.push_back("hourglass_work");
+    for (const std::string& name : sim.integrator().history_columns()) columns.push_back(name);
     for (const RigidWall& wall : sim.walls().walls())
       for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("wall_" + wall.name + axis);
     for (const std::string& name : problem.output.reaction_sets) {
@@ -156,6 +153,7 @@ class History {
                                t.external_work, t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage,
                                t.dissipated_energy, static_cast<double>(t.fragments)};
     if (sim_.has_correspondence()) row.push_back(t.hourglass_work);
+    for (double value : sim_.integrator().history_values()) row.push_back(value);
     for (const Vec3& force : t.wall_force) row.insert(row.end(), {force.x, force.y, force.z});
     for (const NodeSet* set : reaction_sets_) {
       Vec3 r = sim_.reaction(*set);
@@ -239,7 +237,7 @@ void run_problem(const Problem& problem, const RunOptions& options) {
   for (const Diagnostic& w : problem.warnings) log.line(w.str());
   std::istringstream setup(describe_setup(sim));
   for (std::string line; std::getline(setup, line);) log.line(line);
-  if (sim.time_step() > sim.stable_time_step()) {
+  if (problem.solver.kind == SolverKind::explicit_dynamics && sim.time_step() > sim.stable_time_step()) {
     const std::string warning = fmt::format("warning: time step {:.6g} s is above the stable time step {:.6g} s",
                                             sim.time_step(), sim.stable_time_step());
     log.line(warning);

@@ -118,47 +118,46 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   work_.assign(disc_.num_points(), 0.0);
   stable_dt_ = comm_.min(peridot::stable_time_step(model_));
   const SolverSpec& solver = problem_.solver;
-  dt_ = solver.time_step ? *solver.time_step : solver.safety_factor * stable_dt_;
-  if (solver.end_time) {
-    // Whole steps that end exactly at end_time, none longer than the chosen Δt.
-    total_steps_ = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(*solver.end_time / dt_ * (1 - 1e-12))));
-    dt_ = *solver.end_time / static_cast<double>(total_steps_);
+  if (solver.kind == SolverKind::relaxation) {
+    total_steps_ = solver.load_steps;
+    dt_ = solver.end_time.value_or(1.0) / static_cast<double>(total_steps_);
   } else {
-    total_steps_ = solver.num_steps.value_or(0);
+    dt_ = solver.time_step ? *solver.time_step : solver.safety_factor * stable_dt_;
+    if (solver.end_time) {
+      // Whole steps that end exactly at end_time, none longer than the chosen Δt.
+      total_steps_ = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(*solver.end_time / dt_ * (1 - 1e-12))));
+      dt_ = *solver.end_time / static_cast<double>(total_steps_);
+    } else {
+      total_steps_ = solver.num_steps.value_or(0);
+    }
   }
+  integrator_ = make_time_integrator(*this);
 }
 
-void Simulation::initialize() {
+Simulation::~Simulation() = default;
+
+void Simulation::apply_initial_state() {
   state_.time = 0;
   state_.step = 0;
   loads_->apply_initial_conditions(state_);
   halo_.exchange(state_.u.data(), 3);
   halo_.exchange(state_.v.data(), 3);
   loads_->update_body_force(0.0, state_.body_force);
-  // No time passes at t = 0: the history starts from the initial displacement with Δt = 0 (an initial
-  // displacement beyond yield flows plastically at once; a viscous back extension starts at 0).
-  set_time_step(model_.params, 0.0);
-  std::string failure;
-  try {
-    compute_forces(0.0);
-  } catch (const NumericalError& e) {
-    failure = e.what();  // every exchange below still runs: the other ranks wait for this rank's messages
-  }
-  if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, 0.0);
-  exchange_partner_bonds();
-  agree_on_failure(failure);
-  set_time_step(model_.params, dt_);
 }
 
-void Simulation::compute_forces(double dt) {
-  // Bond failure is checked in the first pass that computes every bond's stretch (on u^{n+1}, before any
-  // force uses the bond).
+void Simulation::evaluate(double dt, bool break_bonds) {
+  // Bond failure is checked in the first pass that computes every bond's stretch (on the current u,
+  // before any force uses the bond).
+  const bool fail = break_bonds && any_damage_;
   const bool fail_in_force_pass = !any_dilatation_ || model_.bond_failure_after_force;
+  if (!fail && !state_.history.released_extension.empty())  // no bond breaks now: θ lost nothing to one
+    std::fill(state_.history.released_extension.begin(), state_.history.released_extension.end(), 0.0);
   if (any_dilatation_) {
-    compute_dilatation(model_, state_.u, state_.dilatation, any_damage_ && !fail_in_force_pass, &state_.history);
+    compute_dilatation(model_, state_.u, state_.dilatation, fail && !fail_in_force_pass, &state_.history);
     halo_.exchange(state_.dilatation);
   }
   if (history_arrays_ > 0) {
+    set_time_step(model_.params, dt);
     prepare_history(model_, state_.u, state_.dilatation, state_.history);
     if (any_plastic_) {  // what the force of a plastic point's partner reads of it (lps_plastic.hpp)
       halo_.exchange(state_.history.released_extension);
@@ -166,117 +165,45 @@ void Simulation::compute_forces(double dt) {
       halo_.exchange(state_.history.deviatoric_moment);
     }
   }
-  compute_internal_force(model_, state_.u, state_.dilatation, state_.force, any_damage_ && fail_in_force_pass,
+  compute_internal_force(model_, state_.u, state_.dilatation, state_.force, fail && fail_in_force_pass,
                          &state_.history);
   if (!walls_->empty()) walls_->compute(state_.u, state_.time, wall_force_);
+  correspondence_failed_ = false;
   if (!has_correspondence()) return;
   try {
-    correspondence_->compute_force(state_.u, state_.v, dt, state_.force, state_.history);
+    correspondence_->evaluate(state_.u, state_.v, dt, state_.force);
   } catch (const NumericalError& e) {
+    correspondence_failed_ = true;
     throw NumericalError(fmt::format("at step {}, time {:.6g} s: {}", state_.step, state_.time, e.what()));
   }
 }
 
-void Simulation::kick(double half_dt) {
-  const auto& kind = loads_->dof_kinds();
-  double* v = state_.v.data();
-  const double* f = state_.force.data();
-  const double* b = state_.body_force.data();
-  const double* c = walls_->empty() ? nullptr : wall_force_.data();
-  for (std::size_t block = 0; block < model_.ranges.size(); ++block) {
-    const BlockRange range = model_.ranges[block];
-    const double scale = half_dt / model_.params[block].density;
-    const double decay = std::exp(-problem_.solver.damping * half_dt);
-    if (c) {
-#pragma omp parallel for schedule(static)
-      for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
-        if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k] + c[k]);
-    } else {
-#pragma omp parallel for schedule(static)
-      for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
-        if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k]);
-    }
+void Simulation::commit(double dt) {
+  if (history_arrays_ > 0) {
+    set_time_step(model_.params, dt);
+    commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
   }
+  // A failed correspondence evaluation is reported by the caller; its collective release decision is
+  // skipped, as every rank stops at the next agree_on_failure.
+  if (has_correspondence() && !correspondence_failed_) correspondence_->commit(state_.u, state_.v, state_.history);
+  exchange_partner_bonds();
 }
 
-void Simulation::step() {
-  const double dt = dt_;
-  const double t = state_.time;
-  const std::size_t dofs = 3 * owned_;
-  const auto& prescribed = loads_->prescribed_dofs();
-  const auto& kind = loads_->dof_kinds();
-  const double* volume = disc_.volume.data();
-  double* work = work_.data();
-  auto dof_mass = [&](std::uint64_t k) { return model_.params[disc_.block[k / 3]].density * volume[k / 3]; };
-  // Work of the supports on prescribed dofs, R = m a − (f + b)V, and of the body force, by the trapezoidal
-  // rule over the step, kept per point; m a·Δu is the change of those dofs' kinetic energy.
-  for (std::uint64_t k : prescribed) work[k / 3] -= 0.5 * dof_mass(k) * state_.v.data()[k] * state_.v.data()[k];
-  auto add_work = [&]() {
-    const double* v = state_.v.data();  // v^{n+½}: Δu = Δt v^{n+½}
-    const double* f = state_.force.data();
-    const double* b = state_.body_force.data();
-    const double* c = walls_->empty() ? nullptr : wall_force_.data();
-    for (std::uint64_t k : prescribed) work[k / 3] -= 0.5 * f[k] * volume[k / 3] * dt * v[k];
-    const bool body_force = loads_->has_body_force();
-    if (!body_force && !c) return;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < owned_; ++i)
-      for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
-        const double applied = (body_force ? b[k] : 0.0) + (c ? c[k] : 0.0);
-        if (kind[k] == DofKind::free) work[i] += 0.5 * applied * volume[i] * dt * v[k];
-      }
+std::uint64_t Simulation::break_bonds() {
+  if (!any_damage_) return 0;
+  const auto count = [&] {
+    return static_cast<std::uint64_t>(std::count(bonds_.broken.begin(), bonds_.broken.end(), std::uint8_t{1}));
   };
-
-  kick(0.5 * dt);
-  loads_->apply_velocity_conditions(t + 0.5 * dt, state_.v);
-  double* u = state_.u.data();
-  const double* v = state_.v.data();
-#pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < dofs; ++k)
-    if (kind[k] != DofKind::displacement) u[k] += dt * v[k];
-  loads_->apply_displacement_conditions(t + dt, dt, state_.u, state_.v);
-  halo_.exchange(state_.u.data(), 3);
-  if (has_correspondence()) halo_.exchange(state_.v.data(), 3);  // Ḟ reads the partners' v^{n+½}
-  add_work();
-
-  state_.time = t + dt;
-  state_.step += 1;
-  loads_->update_body_force(state_.time, state_.body_force);
-  std::string failure;
-  try {
-    compute_forces(dt);
-  } catch (const NumericalError& e) {
-    // Reported below, once every rank has reached the same point; every exchange until then still runs,
-    // since the other ranks wait for this rank's messages.
-    failure = e.what();
+  const std::uint64_t before = count();
+  if (any_dilatation_ && !model_.bond_failure_after_force) {
+    std::vector<double> theta;
+    compute_dilatation(model_, state_.u, theta, true, nullptr);
+  } else {
+    VectorField f(disc_.num_points());
+    std::vector<double> theta = state_.dilatation;
+    compute_internal_force(model_, state_.u, theta, f, true, &state_.history);
   }
-  if (history_arrays_ > 0) commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
-  exchange_partner_bonds();
-  add_work();
-
-  kick(0.5 * dt);
-  loads_->apply_velocity_conditions(state_.time, state_.v);
-  for (std::uint64_t k : prescribed) work[k / 3] += 0.5 * dof_mass(k) * state_.v.data()[k] * state_.v.data()[k];
-
-  // A non-finite velocity means the run has failed: name the first such point.
-  std::size_t bad = dofs;
-#pragma omp parallel for schedule(static) reduction(min : bad)
-  for (std::size_t k = 0; k < dofs; ++k)
-    if (!std::isfinite(v[k]) || !std::isfinite(u[k])) bad = std::min(bad, k);
-  if (bad < dofs && failure.empty()) {
-    const std::size_t i = bad / 3;
-    const Vec3 x = disc_.x.get(i);
-    std::ostringstream msg;
-    msg.precision(6);
-    msg << "non-finite " << (std::isfinite(u[bad]) ? "velocity" : "displacement") << " at step " << state_.step
-        << ", time " << state_.time << " s, point " << disc_.input_id[i] << " (block '" << disc_.block_names[disc_.block[i]]
-        << "') at (" << x.x << ", " << x.y << ", " << x.z << ") m; Δt = " << dt << " s, stable Δt = " << stable_dt_
-        << " s";
-    failure = msg.str();
-  }
-  const double start = comm_.serial() ? 0.0 : MPI_Wtime();
-  agree_on_failure(failure);
-  if (!comm_.serial()) collective_seconds_ += MPI_Wtime() - start;
+  return comm_.sum(count() - before);
 }
 
 Halo::Traffic Simulation::communication() const {
@@ -315,8 +242,10 @@ void Simulation::agree_on_input_error(const std::optional<InputError>& error) co
   throw InputError(diagnostics);
 }
 
-void Simulation::agree_on_failure(const std::string& message) const {
+void Simulation::agree_on_failure(const std::string& message) {
+  const double start = comm_.serial() ? 0.0 : MPI_Wtime();
   const int failing = comm_.first_rank_with(!message.empty());
+  if (!comm_.serial()) collective_seconds_ += MPI_Wtime() - start;
   if (failing < 0) return;
   throw NumericalError(comm_.broadcast(message, failing));
 }

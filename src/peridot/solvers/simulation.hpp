@@ -1,12 +1,15 @@
 #pragma once
-// A problem set up and ready to integrate: points, bonds, per-block materials, loads and the state.
-// The explicit solver is velocity Verlet (papers/003, "Temporal discretization"):
-//   v^{n+½} = v^n + (Δt/2) a^n,  u^{n+1} = u^n + Δt v^{n+½},  v^{n+1} = v^{n+½} + (Δt/2) a^{n+1},
-// with bond failure evaluated on u^{n+1} before the force, as Peridigm does. Inelastic models solve their
-// return map on u^{n+1} before the force and commit their history after it, once per step. Correspondence
-// blocks update their stress over the step from u^{n+1} and v^{n+1/2} (correspondence_blocks.hpp). Rigid
-// walls add their penalty force density to the internal and body forces in both kicks, and their work to
-// the external work (trapezoidal, like the body force).
+// A problem set up and ready to solve: points, bonds, per-block materials, loads and the state, and the
+// force evaluator every solver calls:
+//   evaluate(Δt, break_bonds): internal force density (and the rigid walls' penalty force) at the current
+//       u, from the committed history plus a trial update over Δt; nothing committed changes, except that
+//       with break_bonds the bonds over their critical stretch at this u are marked broken first.
+//   commit(Δt): the last evaluation is accepted; every history (plastic and back extensions,
+//       correspondence stress and J2 history, dissipation, hourglass work, symmetry-plane release)
+//       advances to it.
+// The solver itself is a TimeIntegrator (time_integrator.hpp) chosen by the deck's solver.type:
+// velocity Verlet (velocity_verlet.hpp) or adaptive dynamic relaxation (dynamic_relaxation.hpp);
+// initialize() and step() run it.
 //
 // Distributed (mpirun): each rank integrates its owned points, its ghosts refreshed from their owners
 // after every pass that changes what a bond loop reads of a partner (u after the drift, θ after the
@@ -20,6 +23,7 @@
 #include <vector>
 
 #include "peridot/contact/rigid_wall.hpp"
+#include "peridot/core/deterministic_sum.hpp"
 #include "peridot/deck/problem.hpp"
 #include "peridot/geometry/discretize.hpp"
 #include "peridot/loads/loads.hpp"
@@ -30,6 +34,7 @@
 #include "peridot/damage/critical_stretch.hpp"
 #include "peridot/solvers/correspondence_blocks.hpp"
 #include "peridot/solvers/internal_force.hpp"
+#include "peridot/solvers/time_integrator.hpp"
 #include "peridot/state/fields.hpp"
 
 namespace peridot {
@@ -54,6 +59,7 @@ class Simulation {
   /// visible once the points exist (an empty node set, an unreadable point file); distributed, every rank
   /// throws the same error. Collective over `comm`.
   explicit Simulation(const Problem& problem, Communicator comm = Communicator::world());
+  ~Simulation();
   Simulation(const Simulation&) = delete;  // the model context points into this object
   Simulation& operator=(const Simulation&) = delete;
 
@@ -71,13 +77,56 @@ class Simulation {
   const State& state() const { return state_; }
 
   double stable_time_step() const { return stable_dt_; }  ///< without safety factor (s)
-  double time_step() const { return dt_; }                ///< the Δt the run uses (s)
+  /// Δt (s) of a step: explicit, the deck's time_step or safety_factor × the stable one, shortened so that
+  /// whole steps end at end_time; relaxation, the (real) time between load steps.
+  double time_step() const { return dt_; }
+  /// Steps (explicit) or load steps (relaxation) to the end of the run.
   std::int64_t total_steps() const { return total_steps_; }
+  /// The solver the deck chose.
+  TimeIntegrator& integrator() { return *integrator_; }
+  const TimeIntegrator& integrator() const { return *integrator_; }
 
-  /// Applies the initial conditions and computes the forces at t = 0.
-  void initialize();
-  /// One Verlet step. Throws NumericalError naming step, time, point and position on a non-finite value.
-  void step();
+  /// Applies the initial conditions and computes the forces at t = 0 (the integrator's initialize).
+  void initialize() { integrator_->initialize(); }
+  /// One step of the integrator: an explicit time step, or a load step relaxed to equilibrium. Throws
+  /// NumericalError naming step, time, point and position on a non-finite value.
+  void step() { integrator_->advance(); }
+
+  // -- what integrators call ------------------------------------------------------------------------
+  /// State at t = 0: initial conditions, ghosts, body force at t = 0 (no force yet).
+  void apply_initial_state();
+  /// Internal force density (state().force) and, with rigid walls, their penalty force density
+  /// (wall_force()) at the current state().u, with the history updated by trial over Δt (correspondence
+  /// blocks: the stress over Δt from the committed one, with state().v as the velocity of the step).
+  /// Changes nothing committed, so it may run any number of times for one step, except that with
+  /// break_bonds the bonds over their critical stretch are marked broken first (velocity Verlet checks
+  /// failure in the same pass, on u^{n+1}, as Peridigm does). Throws NumericalError (with step and time)
+  /// on this rank only: call agree_on_failure before the next collective that could diverge.
+  void evaluate(double dt, bool break_bonds);
+  /// Accepts the last evaluate(): every history advances over Δt, partner-bond copies are refreshed.
+  /// Collective.
+  void commit(double dt);
+  /// Marks every intact bond over its critical stretch at the current u broken, as evaluate(…, true)
+  /// would, and returns how many broke on all ranks. Collective.
+  std::uint64_t break_bonds();
+  /// The loads of the deck (initial and boundary conditions, body forces).
+  Loads& loads() { return *loads_; }
+  const Loads& loads() const { return *loads_; }
+  /// Penalty force density of the rigid walls at the last evaluate() (N/m³); meaningless without walls.
+  const VectorField& wall_force() const { return wall_force_; }
+  bool has_walls() const { return !walls_->empty(); }
+  /// Work done on each owned point by the supports, body forces and walls since t = 0 (J); integrators
+  /// add to it.
+  std::vector<double>& external_work() { return work_; }
+  /// Refreshes the ghosts' copy of a vector field (u, v) from their owners. Collective.
+  void exchange_ghosts(VectorField& field) { halo_.exchange(field.data(), 3); }
+  /// Throws, on every rank, the first failing rank's NumericalError (message empty: none). Collective;
+  /// its time counts as communication.
+  void agree_on_failure(const std::string& message);
+  /// ρ of each block (kg/m³).
+  double density_of(std::size_t point) const { return model_.params[disc_.block[point]].density; }
+  /// Whether some material may break bonds.
+  bool any_damage() const { return any_damage_; }
 
   /// The rigid walls of the deck (contact/rigid_wall.hpp); empty() when none.
   const RigidWalls& walls() const { return *walls_; }
@@ -111,16 +160,10 @@ class Simulation {
   Halo::Traffic communication() const;
 
  private:
-  /// Internal force at the current u (and, for correspondence blocks, the stress update over dt with the
-  /// current, mid-step, velocity).
   /// Labels state_.fragment, once per step (collective).
   void fragments();
-  void compute_forces(double dt);
-  void kick(double half_dt);
   /// Copies this rank's owned values of a per-point field into the global field on rank 0.
   void gather_field(const double* local, int components, std::vector<double>& global) const;
-  /// Throws, on every rank, the first failing rank's NumericalError (message empty: none). Collective.
-  void agree_on_failure(const std::string& message) const;
   /// Throws, on every rank, the first failing rank's InputError (none: no error anywhere). Collective.
   void agree_on_input_error(const std::optional<InputError>& error) const;
   /// Copies the owners' per-bond history into the partner-bond slots (after every commit).
@@ -157,29 +200,12 @@ class Simulation {
   std::vector<double> energy_density_;
   double stable_dt_ = 0, dt_ = 0;
   std::int64_t total_steps_ = 0;
+  std::unique_ptr<TimeIntegrator> integrator_;
   std::vector<double> work_;  ///< J, external work done on each point since t = 0
   bool any_dilatation_ = false, any_damage_ = false, any_plastic_ = false;
   int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
+  bool correspondence_failed_ = false;  ///< the last evaluate() failed in a correspondence block
   std::int64_t fragments_step_ = -1;  ///< the step state_.fragment was labelled at (-1: never)
 };
-
-/// Sum of term(i) over i < n in chunks of fixed size, chunk results added in order: bitwise the same for
-/// any number of threads.
-template <class Term>
-double deterministic_sum(std::size_t n, Term&& term) {
-  constexpr std::size_t chunk = 4096;
-  const std::size_t chunks = (n + chunk - 1) / chunk;
-  std::vector<double> partial(chunks, 0.0);
-#pragma omp parallel for schedule(static)
-  for (std::size_t c = 0; c < chunks; ++c) {
-    double sum = 0;
-    const std::size_t end = std::min(n, (c + 1) * chunk);
-    for (std::size_t i = c * chunk; i < end; ++i) sum += term(i);
-    partial[c] = sum;
-  }
-  double total = 0;
-  for (double p : partial) total += p;
-  return total;
-}
 
 }  // namespace peridot

@@ -1,0 +1,261 @@
+#include "peridot/solvers/dynamic_relaxation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "peridot/parallel/communicator.hpp"
+#include "peridot/solvers/simulation.hpp"
+
+namespace peridot {
+
+namespace {
+/// The damping coefficient's cap: (2 − c) must stay positive for the update to contract (a code
+/// heuristic of the Madenci–Oterkus programs; the paper gives none).
+constexpr double max_damping = 1.9;
+}  // namespace
+
+DynamicRelaxation::DynamicRelaxation(Simulation& sim) : sim_(sim) {
+  std::vector<double> k;
+  stiffness_bound(sim_.model(), k);
+  const double factor = sim_.problem().solver.density_factor;
+  density_.resize(sim_.num_owned());
+  // Δt = 1: Λ ≥ ¼ Σ_j |K_ij|; a point without bonds gets 1 (it has no stiffness to bound).
+  for (std::size_t i = 0; i < density_.size(); ++i) density_[i] = k[i] > 0 ? factor * 0.25 * k[i] : 1.0;
+  const std::size_t dofs = 3 * sim_.num_owned();
+  velocity_.assign(dofs, 0.0);
+  force_.assign(dofs, 0.0);
+  previous_force_.assign(dofs, 0.0);
+}
+
+void DynamicRelaxation::set_loads(double t, double factor) {
+  State& state = sim_.state();
+  Loads& loads = sim_.loads();
+  loads.apply_displacement_conditions(t, factor, state.u);
+  sim_.exchange_ghosts(state.u);
+  if (loads.has_body_force()) {
+    if (body_force_.size() != state.u.size()) body_force_.resize(state.u.size());
+    loads.update_body_force(t, body_force_);
+    const double* b = body_force_.data();
+    double* out = state.body_force.data();
+    for (std::size_t k = 0; k < 3 * state.u.size(); ++k) out[k] = factor * b[k];
+  }
+}
+
+void DynamicRelaxation::initialize() {
+  sim_.apply_initial_state();
+  State& state = sim_.state();
+  const SolverSpec& solver = sim_.problem().solver;
+  set_loads(0.0, solver.ramp ? 0.0 : 1.0);
+  std::fill(state.v.data(), state.v.data() + 3 * state.v.size(), 0.0);
+  std::string failure;
+  try {
+    sim_.evaluate(0.0, true);
+  } catch (const NumericalError& e) {
+    failure = e.what();
+  }
+  sim_.commit(0.0);
+  sim_.agree_on_failure(failure);
+  committed_u_ = state.u;
+  load_factor_ = solver.ramp ? 0.0 : 1.0;
+}
+
+void DynamicRelaxation::evaluate_residual_force(std::vector<double>& F) {
+  State& state = sim_.state();
+  const std::size_t dofs = 3 * sim_.num_owned();
+  if (sim_.has_correspondence()) {  // the rate of the load step, which the stress update integrates
+    const double dt = sim_.time_step();
+    double* v = state.v.data();
+    const double* u = state.u.data();
+    const double* u0 = committed_u_.data();
+    for (std::size_t k = 0; k < dofs; ++k) v[k] = dt > 0 ? (u[k] - u0[k]) / dt : 0.0;
+    sim_.exchange_ghosts(state.v);
+  }
+  std::string failure;
+  try {
+    sim_.evaluate(sim_.time_step(), false);
+  } catch (const NumericalError& e) {
+    failure = e.what();
+  }
+  sim_.agree_on_failure(failure);
+  const auto& kind = sim_.loads().dof_kinds();
+  const double* f = state.force.data();
+  const double* b = state.body_force.data();
+  const double* w = sim_.has_walls() ? sim_.wall_force().data() : nullptr;
+  const bool body = sim_.loads().has_body_force();
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < dofs; ++k)
+    F[k] = kind[k] == DofKind::free ? f[k] + (body ? b[k] : 0.0) + (w ? w[k] : 0.0) : 0.0;
+}
+
+double DynamicRelaxation::norm(const std::vector<double>& w) const {
+  const double* volume = sim_.discretization().volume.data();
+  const double sum = reproducible_sum(sim_.communicator(), w.size(), [&](std::size_t k) {
+    const double value = w[k] * volume[k / 3];
+    return value * value;
+  });
+  return std::sqrt(sum);
+}
+
+double DynamicRelaxation::relative_residual(const std::vector<double>& F, double start_norm) const {
+  const State& state = sim_.state();
+  const auto& kind = sim_.loads().dof_kinds();
+  const std::size_t dofs = F.size();
+  const double* f = state.force.data();
+  const double* b = state.body_force.data();
+  const double* w = sim_.has_walls() ? sim_.wall_force().data() : nullptr;
+  const bool body = sim_.loads().has_body_force();
+  std::vector<double> reaction(dofs), applied(dofs);
+  for (std::size_t k = 0; k < dofs; ++k) {
+    reaction[k] = kind[k] == DofKind::free ? 0.0 : f[k];
+    applied[k] = kind[k] == DofKind::free ? (body ? b[k] : 0.0) + (w ? w[k] : 0.0) : 0.0;
+  }
+  const double reference = std::max({norm(reaction), norm(applied), start_norm});
+  const double residual = norm(F);
+  if (!std::isfinite(residual)) return residual;
+  return reference > 0 ? residual / reference : 0.0;
+}
+
+std::int64_t DynamicRelaxation::relax() {
+  State& state = sim_.state();
+  const SolverSpec& solver = sim_.problem().solver;
+  const auto& kind = sim_.loads().dof_kinds();
+  const Communicator& comm = sim_.communicator();
+  const std::size_t dofs = 3 * sim_.num_owned();
+  double* u = state.u.data();
+  evaluate_residual_force(force_);
+  const double start = norm(force_);
+  for (std::int64_t iteration = 0;; ++iteration) {
+    residual_ = relative_residual(force_, start);
+    if (!std::isfinite(residual_)) {
+      std::string failure;
+      for (std::size_t k = 0; k < dofs && failure.empty(); ++k)
+        if (!std::isfinite(u[k]) || !std::isfinite(force_[k])) {
+          const std::size_t i = k / 3;
+          const Discretization& disc = sim_.discretization();
+          const Vec3 x = disc.x.get(i);
+          failure = fmt::format(
+              "dynamic relaxation diverged in load step {} (time {:.6g} s) at iteration {}: non-finite {} at point {} "
+              "(block '{}') at ({:g}, {:g}, {:g}) m; raise solver.density_factor",
+              state.step + 1, state.time, iteration, std::isfinite(u[k]) ? "force" : "displacement", disc.input_id[i],
+              disc.block_names[disc.block[i]], x.x, x.y, x.z);
+        }
+      if (comm.first_rank_with(!failure.empty()) < 0) failure = "dynamic relaxation diverged (non-finite residual)";
+      sim_.agree_on_failure(failure);
+    }
+    if (residual_ <= solver.tolerance) return iteration;
+    if (iteration >= solver.max_iterations)
+      throw NumericalError(fmt::format(
+          "dynamic relaxation did not converge in load step {} (time {:.6g} s, load factor {:.6g}): relative force "
+          "residual {:.3e} after {} iterations, tolerance {:.3e}; raise solver.max_iterations, loosen "
+          "solver.tolerance or use more load_steps",
+          state.step + 1, state.time, load_factor_, residual_, iteration, solver.tolerance));
+    double c = 0;
+    if (iteration > 0) {
+      // Local Rayleigh quotient over the free dofs that moved (both sums reproducible).
+      const double numerator = reproducible_sum(comm, dofs, [&](std::size_t k) {
+        if (kind[k] != DofKind::free || velocity_[k] == 0) return 0.0;
+        const double stiffness = -(force_[k] - previous_force_[k]) / (density_[k / 3] * velocity_[k]);
+        return u[k] * stiffness * u[k];
+      });
+      const double denominator = reproducible_sum(comm, dofs, [&](std::size_t k) {
+        return kind[k] == DofKind::free && velocity_[k] != 0 ? u[k] * u[k] : 0.0;
+      });
+      if (denominator > 0 && numerator > 0) c = std::min(max_damping, 2 * std::sqrt(numerator / denominator));
+    }
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < dofs; ++k) {
+      if (kind[k] != DofKind::free) continue;
+      const double a = force_[k] / density_[k / 3];
+      velocity_[k] = iteration == 0 ? 0.5 * a : ((2 - c) * velocity_[k] + 2 * a) / (2 + c);
+      u[k] += velocity_[k];
+    }
+    sim_.exchange_ghosts(state.u);
+    std::swap(previous_force_, force_);
+    evaluate_residual_force(force_);
+    ++iterations_;
+  }
+}
+
+void DynamicRelaxation::advance() {
+  State& state = sim_.state();
+  const SolverSpec& solver = sim_.problem().solver;
+  const Discretization& disc = sim_.discretization();
+  const std::size_t owned = sim_.num_owned();
+  const auto& kind = sim_.loads().dof_kinds();
+  const double dt = sim_.time_step();
+  const std::int64_t k = state.step + 1;
+  // The forces of the last accepted state, for the external work (trapezoidal over the load step).
+  const VectorField force_before = state.force;
+  const VectorField body_before = state.body_force;
+  const VectorField wall_before = sim_.has_walls() ? sim_.wall_force() : VectorField();
+
+  const double t = static_cast<double>(k) * dt;
+  load_factor_ = solver.ramp ? static_cast<double>(k) / static_cast<double>(sim_.total_steps()) : 1.0;
+  state.time = t;
+  set_loads(t, load_factor_);
+  iterations_ = 0;
+  broken_ = 0;
+  std::fill(velocity_.begin(), velocity_.end(), 0.0);
+  for (;;) {
+    relax();
+    const std::uint64_t broken = sim_.break_bonds();
+    broken_ += broken;
+    if (broken == 0) break;
+    std::fill(velocity_.begin(), velocity_.end(), 0.0);  // a new equilibrium: the damped motion restarts
+  }
+  // The state's velocity: the load step's mean.
+  double* v = state.v.data();
+  const double* u = state.u.data();
+  const double* u0 = committed_u_.data();
+  for (std::size_t q = 0; q < 3 * owned; ++q) v[q] = dt > 0 ? (u[q] - u0[q]) / dt : 0.0;
+  sim_.exchange_ghosts(state.v);
+  sim_.commit(dt);
+
+  // External work over the load step, trapezoidal: the supports' −f V on prescribed dofs, the body and
+  // wall forces on free ones.
+  double* work = sim_.external_work().data();
+  const double* volume = disc.volume.data();
+  const bool body = sim_.loads().has_body_force();
+  const bool walls = sim_.has_walls();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < owned; ++i)
+    for (std::size_t q = 3 * i; q < 3 * i + 3; ++q) {
+      const double du = u[q] - u0[q];
+      if (kind[q] != DofKind::free) {
+        work[i] -= 0.5 * (force_before.data()[q] + state.force.data()[q]) * volume[i] * du;
+      } else {
+        double applied = 0;
+        if (body) applied += body_before.data()[q] + state.body_force.data()[q];
+        if (walls) applied += wall_before.data()[q] + sim_.wall_force().data()[q];
+        work[i] += 0.5 * applied * volume[i] * du;
+      }
+    }
+  committed_u_ = state.u;
+  state.step = k;
+}
+
+std::string DynamicRelaxation::describe() const {
+  const SolverSpec& s = sim_.problem().solver;
+  std::string out;
+  out += fmt::format("solver           relaxation (adaptive dynamic relaxation, Kilic & Madenci 2010)\n");
+  out += fmt::format("load steps       {} to t = {:.6g} s ({}), Δt = {:.6g} s\n", sim_.total_steps(),
+                     sim_.time_step() * static_cast<double>(sim_.total_steps()),
+                     s.ramp ? "loads ramped by k/N" : "loads as given at each t_k", sim_.time_step());
+  out += fmt::format("equilibrium      relative force residual ≤ {:.3g}, at most {} iterations, density factor {:.3g}\n",
+                     s.tolerance, s.max_iterations, s.density_factor);
+  return out;
+}
+
+std::vector<std::string> DynamicRelaxation::history_columns() const {
+  return {"load_factor", "residual", "iterations", "bonds_broken"};
+}
+
+std::vector<double> DynamicRelaxation::history_values() const {
+  return {load_factor_, residual_, static_cast<double>(iterations_), static_cast<double>(broken_)};
+}
+
+}  // namespace peridot

@@ -1,0 +1,71 @@
+#pragma once
+// Adaptive dynamic relaxation (Kilic & Madenci, Theor. Appl. Fract. Mech. 53 (2010) 194; docs/algorithms.md)
+// in quasi-static load steps. The static problem F(u) = 0 (F: internal plus body and wall force density
+// on the free dofs) is solved as the steady state of the fictitious damped motion Λ ü + c Λ u̇ = F(u)
+// with Δt = 1:
+//   Λ: a diagonal fictitious density per point, density_factor × ¼ Σ_j V_j c/ξ_ij (a Gerschgorin bound
+//      of the row of the stiffness, c the block's bulk-equivalent micromodulus; stiffness_bound);
+//   c^n = 2 √(Σ u_i ¹K_ii u_i / Σ u_i²), ¹K_ii = −(F_i^n − F_i^{n−1}) / (Λ_i u̇_i^{n−½}) over the free
+//      dofs whose u̇ ≠ 0 (the local Rayleigh quotient; c = 0 when the quotient is not positive, at most
+//      1.9 so that the update below stays a contraction);
+//   u̇^{½} = ½ F⁰/Λ, then u̇^{n+½} = [(2 − c) u̇^{n−½} + 2 F^n/Λ] / (2 + c), u^{n+1} = u^n + u̇^{n+½}.
+// Every global sum is reproducible_sum (exact integer accumulation), so the iterates are the same bits
+// on any number of threads and ranks.
+// Convergence (Peridot's choice; the paper runs a fixed count): ‖F V‖ over the free dofs ≤ tolerance ×
+// the largest of ‖R‖ (the supports' reaction, f V on the prescribed dofs), ‖b V‖ (the applied body force)
+// and the residual at the start of the equilibrium. More than max_iterations ends the run with a
+// NumericalError naming the load step and the residual reached.
+// Load steps k = 1 … N at times t_k = k·end_time/N (end_time defaults to 1 s): prescribed displacements
+// and body forces are evaluated at t_k and, with ramp (the default), scaled by the load factor k/N.
+// After each equilibrium the bonds over their critical stretch break and the step is relaxed again,
+// until none breaks (stable crack growth); then the step is committed over the real Δt = t_k − t_{k−1}
+// (inelastic and viscous histories advance once per load step, relaxation runs inside each real step).
+// The state's velocity is the load step's mean, (u_k − u_{k−1})/Δt (also what the correspondence
+// stress update reads as the rate of the step); the fictitious velocity stays internal.
+#include <cstdint>
+#include <vector>
+
+#include "peridot/solvers/time_integrator.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+class DynamicRelaxation final : public TimeIntegrator {
+ public:
+  explicit DynamicRelaxation(Simulation& sim);
+  void initialize() override;
+  void advance() override;
+  std::string describe() const override;
+  std::vector<std::string> history_columns() const override;
+  std::vector<double> history_values() const override;
+
+  /// Iterations of the last equilibrium search in total (all rounds of bond breaking) and the relative
+  /// residual it ended at.
+  std::int64_t iterations() const { return iterations_; }
+  double residual() const { return residual_; }
+  /// Bonds that broke in the last load step (all ranks).
+  std::uint64_t bonds_broken() const { return broken_; }
+  /// Relaxes the current load to equilibrium (no bond breaks, nothing committed); returns the iterations.
+  /// Throws NumericalError past max_iterations. Public for tests and benchmarks.
+  std::int64_t relax();
+
+ private:
+  /// The force on the free dofs (internal + body + wall), zero on prescribed ones; evaluates first.
+  void evaluate_residual_force(std::vector<double>& F);
+  /// Relative residual of F (see the header) with the supports' reaction from the current force.
+  double relative_residual(const std::vector<double>& F, double start_norm) const;
+  /// Euclidean norm over the owned dofs of w_k (collective, reproducible).
+  double norm(const std::vector<double>& w) const;
+  void set_loads(double t, double factor);
+
+  Simulation& sim_;
+  std::vector<double> density_;  ///< Λ per point (kg/m³ with Δt = 1)
+  VectorField body_force_;       ///< the deck's body force at t_k, before the load factor
+  std::vector<double> velocity_, force_, previous_force_;  ///< per owned dof
+  VectorField committed_u_;      ///< u at the last accepted load step
+  double load_factor_ = 0, residual_ = 0;
+  std::int64_t iterations_ = 0;
+  std::uint64_t broken_ = 0;
+};
+
+}  // namespace peridot

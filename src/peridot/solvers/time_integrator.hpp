@@ -1,0 +1,34 @@
+#pragma once
+// The solver interface: a TimeIntegrator advances a Simulation from one accepted state to the next
+// through the force evaluator (Simulation::evaluate, commit, break_bonds) and nothing else of its
+// internals. Members: velocity Verlet (velocity_verlet.hpp, solver.type: explicit) and adaptive dynamic
+// relaxation in load steps (dynamic_relaxation.hpp, solver.type: relaxation). A new solver is one file
+// pair and one line in make_time_integrator (time_integrator.cpp), plus its deck keys (deck/schema.cpp).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace peridot {
+
+class Simulation;
+
+class TimeIntegrator {
+ public:
+  virtual ~TimeIntegrator() = default;
+  /// The state at t = 0 (initial conditions) with its forces evaluated and committed (Δt = 0).
+  virtual void initialize() = 0;
+  /// One step: state().step grows by one and state().time reaches the step's time. Throws
+  /// NumericalError naming step, time and point on a non-finite value (every rank alike).
+  virtual void advance() = 0;
+  /// Lines `peridot check` and run.log print about the solver (time step, steps, tolerances).
+  virtual std::string describe() const = 0;
+  /// Extra history columns of this solver and their values at the last step (empty for the explicit one).
+  virtual std::vector<std::string> history_columns() const { return {}; }
+  virtual std::vector<double> history_values() const { return {}; }
+};
+
+/// The integrator the deck's solver.type names, bound to `sim` (which outlives it).
+std::unique_ptr<TimeIntegrator> make_time_integrator(Simulation& sim);
+
+}  // namespace peridot

@@ -1,0 +1,142 @@
+#include "peridot/solvers/velocity_verlet.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "peridot/solvers/simulation.hpp"
+
+namespace peridot {
+
+void VelocityVerlet::initialize() {
+  sim_.apply_initial_state();
+  // No time passes at t = 0: the history starts from the initial displacement with Δt = 0 (an initial
+  // displacement beyond yield flows plastically at once; a viscous back extension starts at 0).
+  std::string failure;
+  try {
+    sim_.evaluate(0.0, true);
+  } catch (const NumericalError& e) {
+    failure = e.what();  // every exchange below still runs: the other ranks wait for this rank's messages
+  }
+  sim_.commit(0.0);
+  sim_.agree_on_failure(failure);
+}
+
+void VelocityVerlet::kick(double half_dt) {
+  const ModelContext& model = sim_.model();
+  State& state = sim_.state();
+  const auto& kind = sim_.loads().dof_kinds();
+  double* v = state.v.data();
+  const double* f = state.force.data();
+  const double* b = state.body_force.data();
+  const double* c = sim_.has_walls() ? sim_.wall_force().data() : nullptr;
+  for (std::size_t block = 0; block < model.ranges.size(); ++block) {
+    const BlockRange range = model.ranges[block];
+    const double scale = half_dt / model.params[block].density;
+    const double decay = std::exp(-sim_.problem().solver.damping * half_dt);
+    if (c) {
+#pragma omp parallel for schedule(static)
+      for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
+        if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k] + c[k]);
+    } else {
+#pragma omp parallel for schedule(static)
+      for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)
+        if (kind[k] == DofKind::free) v[k] = decay * v[k] + scale * (f[k] + b[k]);
+    }
+  }
+}
+
+void VelocityVerlet::advance() {
+  State& state = sim_.state();
+  Loads& loads = sim_.loads();
+  const Discretization& disc = sim_.discretization();
+  const double dt = sim_.time_step();
+  const double t = state.time;
+  const std::size_t owned = sim_.num_owned();
+  const std::size_t dofs = 3 * owned;
+  const auto& prescribed = loads.prescribed_dofs();
+  const auto& kind = loads.dof_kinds();
+  const double* volume = disc.volume.data();
+  double* work = sim_.external_work().data();
+  auto dof_mass = [&](std::uint64_t k) { return sim_.density_of(k / 3) * volume[k / 3]; };
+  // Work of the supports on prescribed dofs, R = m a − (f + b)V, and of the body force, by the trapezoidal
+  // rule over the step, kept per point; m a·Δu is the change of those dofs' kinetic energy.
+  for (std::uint64_t k : prescribed) work[k / 3] -= 0.5 * dof_mass(k) * state.v.data()[k] * state.v.data()[k];
+  auto add_work = [&]() {
+    const double* v = state.v.data();  // v^{n+½}: Δu = Δt v^{n+½}
+    const double* f = state.force.data();
+    const double* b = state.body_force.data();
+    const double* c = sim_.has_walls() ? sim_.wall_force().data() : nullptr;
+    for (std::uint64_t k : prescribed) work[k / 3] -= 0.5 * f[k] * volume[k / 3] * dt * v[k];
+    const bool body_force = loads.has_body_force();
+    if (!body_force && !c) return;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < owned; ++i)
+      for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
+        const double applied = (body_force ? b[k] : 0.0) + (c ? c[k] : 0.0);
+        if (kind[k] == DofKind::free) work[i] += 0.5 * applied * volume[i] * dt * v[k];
+      }
+  };
+
+  kick(0.5 * dt);
+  loads.apply_velocity_conditions(t + 0.5 * dt, state.v);
+  double* u = state.u.data();
+  const double* v = state.v.data();
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < dofs; ++k)
+    if (kind[k] != DofKind::displacement) u[k] += dt * v[k];
+  loads.apply_displacement_conditions(t + dt, dt, state.u, state.v);
+  sim_.exchange_ghosts(state.u);
+  if (sim_.has_correspondence()) sim_.exchange_ghosts(state.v);  // Ḟ reads the partners' v^{n+½}
+  add_work();
+
+  state.time = t + dt;
+  state.step += 1;
+  loads.update_body_force(state.time, state.body_force);
+  std::string failure;
+  try {
+    sim_.evaluate(dt, true);
+  } catch (const NumericalError& e) {
+    // Reported below, once every rank has reached the same point; every exchange until then still runs,
+    // since the other ranks wait for this rank's messages.
+    failure = e.what();
+  }
+  sim_.commit(dt);
+  add_work();
+
+  kick(0.5 * dt);
+  loads.apply_velocity_conditions(state.time, state.v);
+  for (std::uint64_t k : prescribed) work[k / 3] += 0.5 * dof_mass(k) * state.v.data()[k] * state.v.data()[k];
+
+  // A non-finite velocity means the run has failed: name the first such point.
+  std::size_t bad = dofs;
+#pragma omp parallel for schedule(static) reduction(min : bad)
+  for (std::size_t k = 0; k < dofs; ++k)
+    if (!std::isfinite(v[k]) || !std::isfinite(u[k])) bad = std::min(bad, k);
+  if (bad < dofs && failure.empty()) {
+    const std::size_t i = bad / 3;
+    const Vec3 x = disc.x.get(i);
+    std::ostringstream msg;
+    msg.precision(6);
+    msg << "non-finite " << (std::isfinite(u[bad]) ? "velocity" : "displacement") << " at step " << state.step
+        << ", time " << state.time << " s, point " << disc.input_id[i] << " (block '" << disc.block_names[disc.block[i]]
+        << "') at (" << x.x << ", " << x.y << ", " << x.z << ") m; Δt = " << dt << " s, stable Δt = "
+        << sim_.stable_time_step() << " s";
+    failure = msg.str();
+  }
+  sim_.agree_on_failure(failure);
+}
+
+std::string VelocityVerlet::describe() const {
+  std::string out;
+  out += fmt::format("solver           explicit (velocity Verlet)\n");
+  out += fmt::format("stable time step {:.6g} s (Silling–Askari)\n", sim_.stable_time_step());
+  out += fmt::format("time step        {:.6g} s{}\n", sim_.time_step(),
+                     sim_.time_step() > sim_.stable_time_step() ? "  WARNING: above the stable time step" : "");
+  out += fmt::format("steps            {} (end time {:.6g} s)\n", sim_.total_steps(),
+                     sim_.time_step() * static_cast<double>(sim_.total_steps()));
+  return out;
+}
+
+}  // namespace peridot
