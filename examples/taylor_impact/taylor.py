@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Taylor impact of 6061-T6 rods on a rigid anvil: runs Peridot for a set of shots, measures the final length
 Lf/L0 and the impact-face diameter Df/D0 from the last Exodus frame, checks the energy balance from the
-history, and compares with House et al. (1995) (../shared/reference/taylor_6061T6_house1995.csv beside the repository, or --data).
+history, and compares with House et al. (1995) (data/taylor_6061T6_house1995.csv next to this script, or --data;
+data/README.md says where the numbers come from).
 
     /usr/bin/python3 examples/taylor_impact/taylor.py --peridot build/peridot --set ld5 --out taylor_runs
     /usr/bin/python3 examples/taylor_impact/taylor.py --peridot build/peridot --set figure --out taylor_runs --plot taylor.png
@@ -167,13 +168,12 @@ def main():
     p.add_argument("--hourglass", type=float, help="hourglass coefficient C_HG for every shot (default: the deck's)")
     p.add_argument("--hourglass-viscosity", type=float,
                    help="hourglass dashpots C_HV for every shot (default: none, as in the deck)")
-    # The shared reference data sits beside the repository (../shared/reference).
     p.add_argument("--contact", choices=("penalty", "symmetry"), default="symmetry",
                    help="the anvil's contact: symmetry (the deck's: a symmetry plane on the impact face; README, "
                         "\"The face layers\") or penalty (a penalty plane through the first layer's centres, the "
                         "earlier versions of this example)")
-    p.add_argument("--data", default=os.path.join(HERE, "..", "..", "..", "shared", "reference",
-                                                  "taylor_6061T6_house1995.csv"))
+    p.add_argument("--data", default=os.path.join(HERE, "data", "taylor_6061T6_house1995.csv"),
+                   help="the House et al. (1995) shots (default: data/taylor_6061T6_house1995.csv next to this script)")
     p.add_argument("--plot", help="write a figure of Lf/L0 and Df/D0 against the experiment")
     p.add_argument("--profile", help="write a figure of the final profile of one shot of the set (see --profile-shot)")
     p.add_argument("--profile-shot", default="ld5_244", help="the shot drawn by --profile (default ld5_244)")

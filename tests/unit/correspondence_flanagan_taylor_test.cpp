@@ -1,4 +1,4 @@
-// Flanagan–Taylor incremental rotation (reference/algorithms.md §1; Foster, Silling & Chen 2010 eqs 15–18):
+// Flanagan–Taylor incremental rotation (docs/algorithms.md §6; Foster, Silling & Chen 2010 eqs 15–18):
 // a constant-rate rigid rotation is recovered to round-off with V = I and d = 0; for rotation with stretch,
 // R converges to the rotation of the polar decomposition of F and stays orthogonal.
 #include <gtest/gtest.h>
@@ -51,7 +51,7 @@ TEST(CorrFlanaganTaylor, RecoversConstantRateRotation) {
 
 TEST(CorrFlanaganTaylor, RotationWithStretchConvergesToPolarDecomposition) {
   // F(t) = R(t) U(t): a rotation about a tilting axis times a growing non-diagonal stretch, t ∈ [0, 1] s
-  // (the kind of test described in algorithms.md §1).
+  // (the kind of test described in docs/algorithms.md §6).
   auto F_of_t = [](double t) {
     const Mat3 R = rotation(Vec3d(1, 0, 0), 1.2 * t) * rotation(Vec3d(0, 1, 1), 0.8 * t * t);
     Mat3 U;

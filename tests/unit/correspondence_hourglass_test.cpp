@@ -1,8 +1,8 @@
-// Hourglass (zero-energy mode) control of the correspondence model (reference/algorithms.md §2a, force.hpp).
+// Hourglass (zero-energy mode) control of the correspondence model (docs/algorithms.md §7, force.hpp).
 // The checkerboard displacement u_i = a s_i e_x, s_i = (−1)^(i+j+k) on a cubic lattice, leaves F = I at every
 // point whose family is point-symmetric (odd neighbours all move by −2a s_i e_x, and Σ_odd ξ = 0), so the
 // correspondence force of eq 25 cannot resist it. A small explicit dynamic run (velocity Verlet, the step
-// order of reference/algorithms.md §3: F at u^{n+1}, Ḟ from v^{n+1/2}) started with a checkerboard velocity
+// order of docs/algorithms.md §5: F at u^{n+1}, Ḟ from v^{n+1/2}) started with a checkerboard velocity
 // shows the mode drifting away without control and oscillating, bounded, with C_HG = 0.05 (the default) and
 // 0.02 (the Taylor example); with the hourglass dashpots (C_HV) the oscillation dies away.
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
 //  - the force of a homogeneous deformation vanishes away from the surface;
 //  - Σ f V = 0 and Σ y × f V = 0 for a random deformation (with hourglass springs and dashpots on);
 //  - a rigid rotation gives F = R, no stress and no force;
-//  - the force is bitwise the same with 1 and 2 threads (DESIGN.md "Determinism").
+//  - the force is bitwise the same with 1 and 2 threads (docs/design.md "Determinism").
 #include <gtest/gtest.h>
 
 #include <cstdio>

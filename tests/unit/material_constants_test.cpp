@@ -1,4 +1,4 @@
-// Material calibration against the closed forms of shared/reference/README.md: micromodulus, critical
+// Material calibration against the closed forms of docs/algorithms.md §2–3: micromodulus, critical
 // stretch from fracture energy (3D and 2D), the 2D bulk modulus, and the influence-function moments.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Analytic invariants every model must satisfy (STYLE.md): zero force under rigid motion, Σ f V = 0 and
+// Analytic invariants every model must satisfy (docs/design.md, "Tests every model passes"): zero force under rigid motion, Σ f V = 0 and
 // zero net moment, and f = −∂W/∂u by finite differences of the total strain energy. Run for PMB and
 // LPS, in 3D and in 2D (plane stress and plane strain), for the three influence functions, and for the
 // inelastic models with a random history: f = −∂W/∂u on the elastic branch (lps_plastic below yield,

@@ -10,7 +10,8 @@ Green–Lagrange strain E_zz (eq 62) for
     volume-weighted mean σ_zz (axial force over current area) against its mean E_zz, raw and 1 µs-averaged;
   * the material-point driver in uniaxial stress at the gauge section's true strain rate (the grips make the
     gauge strain at about twice the nominal rate: 16 700 /s);
-  * the digitized experiment at 8000 /s (Lesuer, ../shared/reference/al6061T6_stress_strain_digitized.csv).
+  * the digitized experiment at 8000 /s (Lesuer, tests/data/experiments/al6061T6_stress_strain_digitized.csv;
+    tests/data/experiments/README.md says where the numbers come from).
     Its strain measure is not recorded (true or engineering): it is drawn as given, and also converted to
     E = (exp(2ε) − 1)/2 as if it were a true (logarithmic) strain.
 Prints the comparison numbers (docs/correspondence.md quotes them). Exits 1 unless the gauge section's
@@ -64,11 +65,11 @@ def main():
     p.add_argument("--source", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
     p.add_argument("--work", default="high_rate_tension")
     p.add_argument("--tests", help="the GoogleTest program (default: tests/peridot_tests beside --peridot)")
-    p.add_argument("--data", help="digitized curves (default: ../shared/reference beside the repository)")
+    p.add_argument("--data", help="digitized curves (default: tests/data/experiments/al6061T6_stress_strain_digitized.csv)")
     p.add_argument("--plot", help="the PNG (default: WORK/high_rate_tension.png)")
     a = p.parse_args()
     tests = a.tests or os.path.join(os.path.dirname(os.path.abspath(a.peridot)), "tests", "peridot_tests")
-    data = a.data or os.path.join(os.path.abspath(a.source), "..", "shared", "reference",
+    data = a.data or os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "experiments",
                                   "al6061T6_stress_strain_digitized.csv")
     os.makedirs(a.work, exist_ok=True)
     curves = os.path.join(os.path.abspath(a.work), "tension.csv")

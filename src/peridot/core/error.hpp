@@ -1,5 +1,5 @@
 #pragma once
-// Two kinds of failure, each with its own exit status (DESIGN.md "Bad input and failures"):
+// Two kinds of failure, each with its own exit status (docs/design.md "Bad input and failures"):
 //  - InputError: a deck or input-file problem the user can fix; exit status 2, nothing written.
 //  - NumericalError: the run itself failed (NaN, blow-up); exit status 3, outputs closed and readable.
 // PERIDOT_REQUIRE is always on (invariants a user can break); PERIDOT_ASSERT is debug-only.

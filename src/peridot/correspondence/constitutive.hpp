@@ -6,7 +6,7 @@
 //   → σ = R τ Rᵀ (eq 23) → P = det(F) σ F⁻ᵀ (eq 24) → P K⁻¹, from which T⟨ξ⟩ = ω P K⁻¹ ξ (eq 25, force.hpp).
 // A law is a small struct (hypoelastic.hpp, j2_viscoplastic.hpp) with a per-point History type; a block
 // holds one law and one History per point, and the block loop is instantiated per law, so nothing is
-// virtual inside it (dispatch once per block, DESIGN.md "Kernels").
+// virtual inside it (dispatch once per block, docs/design.md "Kernels").
 #include <cmath>
 #include <concepts>
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Flanagan–Taylor (1987) incremental rotation: reference/algorithms.md §1; Foster et al. (2010) eqs 15–18.
+// Flanagan–Taylor (1987) incremental rotation: docs/algorithms.md §6; Foster et al. (2010) eqs 15–18.
 #include "peridot/correspondence/flanagan_taylor.hpp"
 
 #include <cmath>

@@ -1,12 +1,12 @@
 #pragma once
 // Incremental rotation of the polar decomposition F = V R (Foster, Silling & Chen 2010, eq 16), following
-// Flanagan & Taylor, CMAME 62 (1987) 305 as restated in reference/algorithms.md §1, and the unrotated rate
+// Flanagan & Taylor, CMAME 62 (1987) 305 as restated in docs/algorithms.md §6, and the unrotated rate
 // of deformation d = Rᵀ D R (eq 18) in which the constitutive laws are written (eqs 19–22).
 //   D = ½(L + Lᵀ) (eq 15), W = ½(L − Lᵀ)
 //   z = axial(D V − V D),  w = axial(W)
 //   ω = w + [tr(V) I − V]⁻¹ z,  Ω = [ω]×                         (F&T eqs 10–13)
 //   R_{n+1} = Q R_n,  Q = (I − ½Δt Ω)⁻¹ (I + ½Δt Ω)   (Hughes–Winget / Cayley, F&T eq 39 family)
-//     Q is orthogonal for any Δt. Of the two increments algorithms.md §1 allows, the Cayley form is chosen
+//     Q is orthogonal for any Δt. Of the two increments docs/algorithms.md §6 allows, the Cayley form is chosen
 //     because it inverts the mid-step velocity gradient of kinematics.hpp: for a rigid rotation from R_n
 //     to R_{n+1}, L = (2/Δt)(Q − I)(Q + I)⁻¹ exactly, and the Cayley map of Δt L returns Q, so a rigid
 //     rotation is recovered to round-off whatever its rate or step (the exponential map would be off by

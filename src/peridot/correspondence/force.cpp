@@ -1,5 +1,5 @@
 // Correspondence force state and gather (Foster, Silling & Chen 2010 eqs 4, 25) and hourglass control
-// (reference/algorithms.md §2a).
+// (docs/algorithms.md §7).
 #include "peridot/correspondence/force.hpp"
 
 #include <algorithm>

@@ -1,9 +1,9 @@
 #pragma once
 // Internal force of the correspondence model, with optional hourglass (zero-energy mode) control.
 // Reference: Foster, Silling & Chen, IJNME 81 (2010) 1242, eqs 4 and 25; hourglass force of Peridigm
-// (Littlewood), restated in reference/algorithms.md §2a.
+// (Littlewood), restated in docs/algorithms.md §7.
 //   force state      T_i⟨ξ⟩ = ω P_i K_i⁻¹ ξ                                                 (eq 25)
-//   hourglass state  T_i^hg⟨ξ⟩ = ω (c_hg/|ξ|) (z_i · n) n,  z_i = Y − F_i ξ,  n = Y/|Y|     (§2a)
+//   hourglass state  T_i^hg⟨ξ⟩ = ω (c_hg/|ξ|) (z_i · n) n,  z_i = Y − F_i ξ,  n = Y/|Y|     (§7)
 //                    c_hg = 18 C_HG K/(π δ⁴) (N/m⁶): C_HG times the 3D PMB micromodulus of bulk modulus K,
 //                    so the control is a weak bond on the non-affine part of each bond's stretch. Peridigm's
 //                    examples use C_HG = 0.02–0.05; tests/unit/correspondence_hourglass_test.cpp measures

@@ -1,6 +1,6 @@
 #pragma once
-// Isotropic hypoelastic law in the unrotated frame (Foster, Silling & Chen 2010, eqs 19–22; reference/
-// algorithms.md §1 step 9):
+// Isotropic hypoelastic law in the unrotated frame (Foster, Silling & Chen 2010, eqs 19–22;
+// docs/algorithms.md §6, step 5):
 //   τ_{n+1} = τ_n + Δt (λ tr(d) I + 2G d),   λ = K − ⅔G,
 // with d the unrotated rate of deformation (eq 18). Because τ̇ is objective (eq 21), a rigid rotation
 // leaves τ unchanged and only rotates σ = R τ Rᵀ (eq 23). In small strain it is Hooke's law.

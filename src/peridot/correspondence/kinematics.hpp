@@ -4,7 +4,7 @@
 //   shape tensor          K   = Σ_j ω ξ⊗ξ V_j                      (eq 10)
 //   deformation gradient  F   = [Σ_j ω Y⟨ξ⟩⊗ξ V_j] K⁻¹              (eq 13)
 //   its rate              Ḟ   = [Σ_j ω (v_j − v_i)⊗ξ V_j] K⁻¹       (eq 13 differentiated in time; the
-//                                                                   velocity state, reference/algorithms.md §3)
+//                                                                   velocity state, docs/algorithms.md §5)
 //   velocity gradient     L   = Ḟ F⁻¹                              (eq 14)
 // ω here is the influence function times the partial-volume factor of the bond, so K, F, Ḟ and the force
 // state (force.hpp) all use the same quadrature and F is exact for every affine deformation, at every

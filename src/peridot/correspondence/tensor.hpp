@@ -1,10 +1,10 @@
 #pragma once
 // Second-order tensors of the correspondence models: Eigen 3×3 matrices for the arithmetic of one point,
 // and TensorField, nine doubles per point (row-major), for the per-point arrays (structure of arrays:
-// one contiguous array per tensor field, DESIGN.md "Data layout").
+// one contiguous array per tensor field, docs/design.md "Data layout").
 // Conventions used throughout src/peridot/correspondence (Foster, Silling & Chen 2010, IJNME 81:1242):
 //   A : B = A_ij B_ij,  |A| = √(A : A) (their footnote to eq 32),  dev A = A − ⅓ tr(A) I (eqs 26, 30),
-//   [a]× b = a × b, axial([a]×) = a (reference/algorithms.md, notation).
+//   [a]× b = a × b, axial([a]×) = a (docs/algorithms.md §1, notation).
 #include <cmath>
 #include <cstddef>
 #include <vector>

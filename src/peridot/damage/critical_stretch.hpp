@@ -1,5 +1,5 @@
 #pragma once
-// Critical-stretch bond failure (Silling & Askari 2005; papers/003 "Bond fails when stretch too large"):
+// Critical-stretch bond failure (Silling & Askari, Comput. Struct. 83 (2005) 1526–1535):
 // a bond breaks, irreversibly, once s = (|Y| − |ξ|)/|ξ| exceeds s0; compression never breaks a bond.
 // s0 is given, or follows from the fracture energy G0 (materials/material.cpp). Damage φ is the
 // volume-weighted fraction of broken bonds of a point.

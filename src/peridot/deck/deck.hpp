@@ -1,5 +1,5 @@
 #pragma once
-// The deck stage: YAML text → a validated, fully resolved Problem (DESIGN.md "The deck").
+// The deck stage: YAML text → a validated, fully resolved Problem (docs/design.md "The deck").
 // Every problem in a deck is collected, each with file:line:col, and thrown together as one InputError.
 #include <iosfwd>
 #include <string>

@@ -1,9 +1,9 @@
 #pragma once
 // Linear peridynamic solid (LPS), ordinary state-based.
-// Silling et al. (2007); papers/003 slides "Linear peridynamic solid"; reference/README.md:
+// Silling, Epton, Weckner, Xu & Askari, J. Elasticity 88 (2007) 151–184; docs/algorithms.md §2:
 //   m = Σ ω ξ² V,  θ = (3/m) Σ ω ξ e V,  t = (3Kθ/m) ω ξ + (15G/m) ω e^d,  e^d = e − θξ/3,
 //   W = Kθ²/2 + (15G/2m) Σ ω (e^d)² V.
-// 2D (reference/algorithms.md §6, derived there and checked by the patch tests):
+// 2D (docs/algorithms.md §3, derived there and checked by the patch tests):
 //   θ₂ = (2/m) Σ ω ξ e V (= ε₁₁ + ε₂₂ for homogeneous strain),
 //   t = (ω/m)[2K′ θ₂ ξ + 8G (e − θ₂ξ/2)],  W = K′θ₂²/2 + (4G/m) Σ ω (e − θ₂ξ/2)² V,
 //   K′ = K + G/3 (plane strain) or 9KG/(3K + 4G) (plane stress).

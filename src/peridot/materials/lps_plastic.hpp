@@ -1,6 +1,6 @@
 #pragma once
-// Elastic-plastic ordinary state-based solid (Mitchell 2011, papers/001; papers/003 "Elastic-plastic
-// model"; reference/algorithms.md §8). The LPS of lps.hpp with the deviatoric extension split additively,
+// Elastic-plastic ordinary state-based solid (Mitchell, SAND2011-3166, 2011; with critical-stretch damage:
+// docs/algorithms.md §9). The LPS of lps.hpp with the deviatoric extension split additively,
 // e^d = e^de + e^dp, the plastic part e^dp a history value of every bond:
 //   (P1) t = (ω/m)[α_v θ ξ + α_d (e^d − e^dp − q ξ)],  e^d = e − θξ/n, θ as in (P7)  (n, α_v, α_d: lps.hpp)
 //        q = Σ ω ξ (e^d − e^dp) V / m over the intact bonds (see (P6))
@@ -15,7 +15,7 @@
 // Calibration: ψ0 is ‖t^d‖²/2 at von Mises yield, ‖t^d‖² = (α_d/m)² Σ ω² ξ² (n·ε^d n)² V for a small
 // deviatoric strain ε^d, with the direction average of (n·ε^d n)² ((2/15) ε^d:ε^d in 3D, ε^d:ε^d/4 for
 // in-plane directions), so √(2ψ0) = k σ_Y with, per point, k² = c Σ_j ω² ξ² V_j / m² and
-//   (C1) 3D, any deviatoric state:          c = 5    (continuum, ω = 1: ψ0 = 25σ_Y²/(8πδ⁵), reference/README.md)
+//   (C1) 3D, any deviatoric state:          c = 5    (continuum, ω = 1: ψ0 = 25σ_Y²/(8πδ⁵), docs/algorithms.md §2)
 //   (C2) plane stress, in-plane uniaxial:  c = 2    (continuum, ω = 1: ψ0 = 2σ_Y²/(πhδ⁴))
 //   (C3) plane strain, in-plane pure shear: c = 8/3  (continuum, ω = 1: ψ0 = 8σ_Y²/(3πhδ⁴)).
 // The sums run over the point's own reference family (as m does), so the lattice quadrature of the

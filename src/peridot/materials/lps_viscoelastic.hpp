@@ -1,6 +1,6 @@
 #pragma once
-// Viscoelastic ordinary state-based solid: the nonlocal standard linear solid of Mitchell (SAND2011-8064;
-// papers/003 "Viscoelastic model"; reference/algorithms.md §4). The bulk response is the elastic LPS of
+// Viscoelastic ordinary state-based solid: the nonlocal standard linear solid of Mitchell (SAND2011-8064, 2011;
+// docs/algorithms.md §8). The bulk response is the elastic LPS of
 // lps.hpp; the deviatoric response is an equilibrium spring in parallel with a Maxwell branch (spring and
 // dashpot) that carries the fraction λ_i of the deviatoric stiffness and relaxes with time constant τ_b:
 //   (V1) t = (ω/m)[α_v θ ξ + α_d ((1 − λ_i) e^d + λ_i (e^d − e^b))],  e^d = e − θξ/n  (n, α_v, α_d: lps.hpp)

@@ -77,7 +77,7 @@ void set_time_step(std::vector<MaterialParams>& params, double dt);
 MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const Problem& problem);
 
 /// The 2D bulk modulus K′ = λ′ + G of the in-plane problem: plane strain K + G/3, plane stress
-/// 9KG/(3K + 4G) = E/(2(1 − ν)). (reference/algorithms.md §6)
+/// 9KG/(3K + 4G) = E/(2(1 − ν)). (docs/algorithms.md §3)
 double planar_bulk_modulus(const ElasticConstants& c, PlaneKind plane);
 
 /// ω(ξ) = 1, δ/ξ or exp(−ξ²/δ²) for a kind fixed at compile time: what a vectorised bond loop calls (a

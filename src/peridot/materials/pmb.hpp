@@ -1,6 +1,6 @@
 #pragma once
 // Prototype microelastic brittle (PMB) bond-based model.
-// Silling & Askari (2005); papers/003 slides "PMB material model":
+// Silling & Askari, Comput. Struct. 83 (2005) 1526–1535; calibration: docs/algorithms.md §2:
 //   pair force f = c s (y′ − y)/|y′ − y|, s = (|Y| − |ξ|)/|ξ|, T⟨ξ⟩ = ½ f, pair energy w = ½ c s² |ξ|.
 // With an influence function the micromodulus is c(ξ) = c0 ω(ξ), c0 calibrated so that an isotropic
 // strain gives the classical energy density (3D: W = 9Ks²/2 → c0 = 9K / (2π ∫₀^δ ω ξ³ dξ), which is

@@ -60,7 +60,7 @@ function (1, δ/ξ or exp(−ξ²/δ²)), V the neighbour volume; sums run over 
 - (3) scalar force state: t = (3Kθ/m) ω ξ + (15G/m) ω e^d, with e^d = e − θξ/3
 - (4) energy density: W = Kθ²/2 + (15G/2m) Σ ω (e^d)² V
 
-2D, thickness h, V = h × area (reference/algorithms.md §6):
+2D, thickness h, V = h × area (docs/algorithms.md §3):
 
 - (5) dilatation: θ₂ = (2/m) Σ ω ξ e V, which equals ε₁₁ + ε₂₂ for a homogeneous strain
 - (6) scalar force state: t = (ω/m)[2K′ θ₂ ξ + 8G (e − θ₂ξ/2)]
@@ -221,7 +221,7 @@ Foster, Silling & Chen (2010).
   aluminium), T_0 = T_r; output `temperature` (K)
 - (23) σ = R τ Rᵀ; (24) P = det(F) σ F⁻ᵀ; (25) force state T⟨ξ⟩ = ω P K⁻¹ ξ; (4) f = Σ (T⟨ξ⟩ − T′⟨−ξ⟩) V
 - hourglass state T^hg⟨ξ⟩ = ω (c_hg/|ξ|) ((Y − Fξ)·n) n, n = Y/|Y|, c_hg = 18 C_HG K/(πδ⁴)
-  (reference/algorithms.md §2a); C_HG is hourglass_coefficient
+  (docs/algorithms.md §7); C_HG is hourglass_coefficient
 - hourglass damping (optional) T^hv⟨ξ⟩ = ω (c_hv/|ξ|) (ż·n) n, ż = (v′ − v) − Ḟξ the rate of Y − Fξ,
   c_hv = 18 C_HV √(ρK)/(πδ³): the same bond with K replaced by a viscosity C_HV ρ c δ, c = √(K/ρ). The springs
   hold a zero-energy mode but store its energy, so an impact leaves it ringing; the dashpots dissipate it.
@@ -251,7 +251,7 @@ the Taylor example, aluminium at δ = 3.015Δx with C_HV = 0.05). It is an estim
 - K⁻¹ is recomputed every step (the eigenvalue check refuses a point whose family is nearly flat, λ_min/λ_max
   below 10⁻⁸, with the point named).)",
       .further_references = {"Flanagan & Taylor, CMAME 62 (1987) 305-320 (incremental rotation)",
-                             "Littlewood, Peridigm hourglass control (reference/algorithms.md §2a)"},
+                             "Littlewood, Peridigm hourglass control (docs/algorithms.md §7)"},
       .example = R"(materials:
   aluminium:
     model: correspondence
@@ -276,14 +276,14 @@ const std::vector<ModelInfo>& material_models() {
       {"lps", ModelKind::lps, "linear peridynamic solid: ordinary state-based, any Poisson ratio",
        "Silling, Epton, Weckner, Xu & Askari, J. Elasticity 88 (2007) 151-184", false, {}, lps_doc()},
       {"lps_plastic", ModelKind::lps_plastic, "elastic-plastic ordinary state-based solid (Mitchell), linear hardening",
-       "Mitchell, SAND2011-3166 (2011); papers/001", false,
+       "Mitchell, SAND2011-3166 (2011)", false,
        {{.key = "yield_stress", .unit = Unit::pressure, .range = positive,
          .description = "uniaxial yield stress σ_y (Pa)", .required = true},
         {.key = "hardening_modulus", .unit = Unit::pressure, .default_yaml = "0", .range = non_negative,
          .description = "linear hardening H (Pa): σ_Y = σ_y + H ε̄p; 0 = perfectly plastic"}},
        lps_plastic_doc()},
       {"lps_viscoelastic", ModelKind::lps_viscoelastic,
-       "viscoelastic ordinary state-based solid (Mitchell standard linear solid)", "Mitchell, SAND2011-8064 (2011); papers/003",
+       "viscoelastic ordinary state-based solid (Mitchell standard linear solid)", "Mitchell, SAND2011-8064 (2011)",
        false,
        {{.key = "relaxing_fraction", .range = {0, 1, false, false},
          .description = "λ_i: share of the deviatoric stiffness that relaxes (Peridigm 'lambda_i')", .required = true},
@@ -292,7 +292,7 @@ const std::vector<ModelInfo>& material_models() {
        lps_viscoelastic_doc()},
       {"correspondence", ModelKind::correspondence,
        "non-ordinary state-based (correspondence) solid: hypoelastic or J2 viscoplastic law, hourglass control",
-       "Foster, Silling & Chen, IJNME 81 (2010) 1242-1258; papers/000", false,
+       "Foster, Silling & Chen, IJNME 81 (2010) 1242-1258", false,
        {{.key = "constitutive_law", .type = ValueType::choice, .description = "the law in the unrotated frame",
          .required = true, .choices = {"hypoelastic", "j2_viscoplastic"}},
         {.key = "yield_stress", .unit = Unit::pressure, .range = positive,

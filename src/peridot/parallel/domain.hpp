@@ -1,5 +1,5 @@
 #pragma once
-// One rank's share of a problem (DESIGN.md "Determinism"; docs/parallel.md). Every rank holds the whole
+// One rank's share of a problem (docs/design.md "Determinism"; docs/parallel.md). Every rank holds the whole
 // discretization (cheap next to the bonds); the bonds, the state and the work are split:
 //  - owned points: those the partition (partition.hpp) gives this rank, in increasing global index, so
 //    that each block stays one contiguous range and the point order is the serial one;
