@@ -3,7 +3,7 @@
 // Each step, after u^{n+1} and with the mid-step velocity v^{n+1/2} (simulation.hpp):
 //   kinematics K⁻¹, F^{n+1}, Ḟ (correspondence/kinematics.hpp, Foster et al. 2010 eqs 10, 13)
 //   → stress update over Δt (constitutive.hpp: eq 14, Flanagan–Taylor eqs 15–18, the law, eqs 23–24)
-//   → force density with hourglass control (force.hpp, eqs 4, 25; reference/algorithms.md §2a).
+//   → force density with hourglass control (force.hpp, eqs 4, 25; docs/algorithms.md §7).
 // Bookkeeping for the energy balance (history CSV): the inelastic (plastic) work per point
 // (constitutive.hpp inelastic_work_increment, into MaterialHistory::dissipation), the stored elastic
 // energy J (p²/2K + S:S/4μ), and the work of the hourglass forces, −Σ ½(f_hg^n + f_hg^{n+1})·Δu V.
