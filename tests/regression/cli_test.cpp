@@ -160,6 +160,22 @@ TEST(Cli, InelasticOneAndTwoThreadsGiveIdenticalBits) {
   expect_identical_with_one_and_two_threads("inelastic_small.yaml", "inelastic_threads");
 }
 
+// Dynamic relaxation in load steps with bonds breaking between equilibria: 1 and 2 threads give identical
+// bits (the damping coefficient's and the residual's sums are exact integer sums); bonds did break.
+TEST(Cli, RelaxationOneAndTwoThreadsGiveIdenticalBits) {
+  const fs::path one = expect_identical_with_one_and_two_threads("relaxation_notch.yaml", "relaxation_threads");
+  const std::string history = read_file(one / "history.csv");
+  EXPECT_NE(history.find("load_factor,residual,iterations,bonds_broken"), std::string::npos) << history;
+  std::istringstream rows(history);
+  std::string row, last;
+  while (std::getline(rows, row)) last = row;
+  EXPECT_EQ(last.rfind("1,3,", 0), 0u) << "the last row is load step 3 at t = 1 s: " << last;
+  std::istringstream cells(last);
+  std::vector<double> values;
+  for (std::string cell; std::getline(cells, cell, ',');) values.push_back(std::stod(cell));
+  EXPECT_GT(values[8], 0.1) << "max_damage: the notch grew";
+}
+
 // The correspondence model: 1 and 2 threads give identical bits (the gathers and sums do not depend on the
 // split), the history has the hourglass work and the Exodus file the correspondence fields.
 TEST(Cli, CorrespondenceOneAndTwoThreadsGiveIdenticalBits) {

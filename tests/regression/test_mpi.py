@@ -22,6 +22,7 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/inelastic_small.yaml", "lps_plastic beside lps_viscoelastic, damage across the interface"),
     ("tests/regression/decks/mpi_correspondence_wall.yaml", "correspondence J2 with hourglass control on an anvil"),
     ("tests/regression/decks/mpi_symmetry_wall.yaml", "correspondence J2 on an anvil with contact: symmetry, released"),
+    ("tests/regression/decks/relaxation_notch.yaml", "dynamic relaxation in load steps, bonds breaking between equilibria"),
 ]
 RANKS = [1, 2, 3, 4]
 

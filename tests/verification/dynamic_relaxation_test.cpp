@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <string>
 
 #include "peridot/deck/deck.hpp"
@@ -18,10 +19,9 @@ using testing::BlockSetup;
 
 constexpr double E = 200e9, nu = 0.3, strain = 1e-3;
 
-/// A bar along x, centred on the origin (n_x × n × n lattice points, n odd so that the planes y = 0 and
-/// z = 0 hold points), gripped over a horizon at each end where u_x = ε x (the classical solution there, so
-/// the grip's extent does not matter), free laterally but for u_y = 0 on y = 0 and u_z = 0 on z = 0
-/// (symmetry planes that take out the rigid motions), relaxed in `load_steps` steps.
+/// A bar along x, centred on the origin (n_x × n × n lattice points), gripped over a horizon at each end,
+/// where the classical solution of uniaxial stress is imposed (u_x = ε x, u_y = −ν ε y, u_z = −ν ε z, so
+/// that the grips' extent does not matter), free elsewhere, relaxed in `load_steps` steps.
 Problem bar_problem(int nx, int n, int load_steps) {
   BlockSetup s;
   s.model = ModelKind::lps;
@@ -37,18 +37,16 @@ Problem bar_problem(int nx, int n, int load_steps) {
   const double L = nx * s.spacing, H = n * s.spacing, grip = 3 * s.spacing;
   p.bodies[0].shape->lo = {-L / 2, -H / 2, -H / 2};
   p.bodies[0].shape->hi = {L / 2, H / 2, H / 2};
-  p.lattice_origin = {-L / 2, -H / 2, -H / 2};  // points at (i + ½)Δx from it: on y = 0 and z = 0 for odd n
-  const double tiny = 1e-3 * s.spacing;
+  p.lattice_origin = {-L / 2, -H / 2, -H / 2};  // points at (i + ½)Δx from it
   p.node_sets = {{"left", {}, testing::box_shape({-1, -1, -1}, {-L / 2 + grip, 1, 1}), {}, ""},
-                 {"right", {}, testing::box_shape({L / 2 - grip, -1, -1}, {1, 1, 1}), {}, ""},
-                 {"y0", {}, testing::box_shape({-1, -tiny, -1}, {1, tiny, 1}), {}, ""},
-                 {"z0", {}, testing::box_shape({-1, -1, -tiny}, {1, 1, tiny}), {}, ""}};
-  const Expression linear{std::to_string(strain) + " * x", {}, false};
+                 {"right", {}, testing::box_shape({L / 2 - grip, -1, -1}, {1, 1, 1}), {}, ""}};
+  const std::string e = std::to_string(strain), contraction = std::to_string(-nu * strain);
   using Kind = BoundaryConditionSpec::Kind;
-  p.boundary_conditions = {{{}, Kind::displacement, "left", 0, linear},
-                           {{}, Kind::displacement, "right", 0, linear},
-                           {{}, Kind::displacement, "y0", 1, Expression{"0", {}, false}},
-                           {{}, Kind::displacement, "z0", 2, Expression{"0", {}, false}}};
+  for (const char* grip_set : {"left", "right"}) {
+    p.boundary_conditions.push_back({{}, Kind::displacement, grip_set, 0, Expression{e + " * x", {}, false}});
+    p.boundary_conditions.push_back({{}, Kind::displacement, grip_set, 1, Expression{contraction + " * y", {}, false}});
+    p.boundary_conditions.push_back({{}, Kind::displacement, grip_set, 2, Expression{contraction + " * z", {}, false}});
+  }
   p.solver = SolverSpec{};
   p.solver.kind = SolverKind::relaxation;
   p.solver.load_steps = load_steps;
@@ -70,7 +68,7 @@ double slope(const Simulation& sim, int along, int component, Select&& select) {
 }
 
 TEST(DynamicRelaxation, BarRelaxesToTheUniaxialSolution) {
-  const int nx = 40, n = 15;
+  const int nx = 60, n = 15;
   Simulation sim(bar_problem(nx, n, 1));
   sim.initialize();
   sim.step();
@@ -80,33 +78,46 @@ TEST(DynamicRelaxation, BarRelaxesToTheUniaxialSolution) {
   // Away from the grips (the middle half) and, for the contraction, more than a horizon inside the
   // lateral surfaces, whose incomplete families make a boundary layer.
   auto middle = [&](Vec3 x) { return std::abs(x.x) < L / 4; };
-  auto core = [&](Vec3 x) {
-    return middle(x) && std::abs(x.z) < 1e-6 && std::abs(x.y) < H / 2 - horizon;
-  };
+  auto core = [&](Vec3 x) { return middle(x) && std::abs(x.y) < H / 2 - horizon && std::abs(x.z) < H / 2 - horizon; };
   const double axial = slope(sim, 0, 0, middle);
   const double lateral = slope(sim, 1, 1, core);
   EXPECT_NEAR(axial, strain, 0.01 * strain);
   EXPECT_NEAR(-lateral / strain, nu, 0.01 * nu) << "lateral strain " << lateral;
+  std::cout << "axial strain " << axial << ", lateral/axial " << lateral / axial << " (ν = " << nu << "), "
+            << relaxation.iterations() << " iterations\n";
 }
 
 TEST(DynamicRelaxation, StoredEnergyEqualsTheWorkOfTheSupports) {
-  // Linear elastic and one load step: the trapezoidal work of the supports, ½ R·Δu, is exact.
-  Simulation sim(bar_problem(16, 7, 1));
-  sim.initialize();
-  sim.step();
-  const Totals t = sim.totals();
-  EXPECT_GT(t.strain_energy, 0);
-  EXPECT_NEAR(t.external_work, t.strain_energy, 1e-6 * t.strain_energy);
-  // Two load steps give the same equilibrium as one (linear, no history), to the tolerance.
-  Simulation twice(bar_problem(16, 7, 2));
+  // The supports' work is summed by the trapezoidal rule over the load steps, ½(R_{k−1} + R_k)·Δu; the
+  // bond extensions |Y| − |ξ| make the response slightly nonlinear (relative O(ε)), so the rule's error
+  // falls as 1/N²: measured 1.8e-4 of the stored energy in one load step.
+  auto mismatch = [](int load_steps) {
+    Simulation sim(bar_problem(16, 7, load_steps));
+    sim.initialize();
+    while (sim.state().step < sim.total_steps()) sim.step();
+    const Totals t = sim.totals();
+    EXPECT_GT(t.strain_energy, 0);
+    return std::abs(t.external_work - t.strain_energy) / t.strain_energy;
+  };
+  const double one = mismatch(1), four = mismatch(4);
+  EXPECT_LT(one, 1e-3);
+  EXPECT_LT(four, 2e-5);
+  EXPECT_NEAR(one / four, 16, 4) << "one load step " << one << ", four " << four;
+}
+
+TEST(DynamicRelaxation, LoadStepsReachTheSameEquilibrium) {
+  // Elastic, no history: relaxing in two load steps ends where one load step does, to the tolerance.
+  Simulation once(bar_problem(16, 7, 1)), twice(bar_problem(16, 7, 2));
+  once.initialize();
+  once.step();
   twice.initialize();
   twice.step();
   twice.step();
   double largest = 0, difference = 0;
-  for (std::size_t i = 0; i < sim.discretization().num_points(); ++i)
+  for (std::size_t i = 0; i < once.discretization().num_points(); ++i)
     for (int d = 0; d < 3; ++d) {
-      largest = std::max(largest, std::abs(sim.state().u(i, d)));
-      difference = std::max(difference, std::abs(sim.state().u(i, d) - twice.state().u(i, d)));
+      largest = std::max(largest, std::abs(once.state().u(i, d)));
+      difference = std::max(difference, std::abs(once.state().u(i, d) - twice.state().u(i, d)));
     }
   EXPECT_LT(difference, 1e-6 * largest);
 }
@@ -146,9 +157,9 @@ solver: {type: relaxation, load_steps: 4, num_steps: 3}
     FAIL() << "deck accepted";
   } catch (const InputError& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find("deck.yaml:8:5: error: initial_conditions: an initial velocity has no meaning"),
+    EXPECT_NE(message.find("deck.yaml:9:5: error: initial_conditions: an initial velocity has no meaning"),
               std::string::npos) << message;
-    EXPECT_NE(message.find("deck.yaml:10:5: error: boundary_conditions: a prescribed velocity"), std::string::npos)
+    EXPECT_NE(message.find("deck.yaml:11:5: error: boundary_conditions: a prescribed velocity"), std::string::npos)
         << message;
     EXPECT_NE(message.find("unknown key 'num_steps'"), std::string::npos) << message;
   }
