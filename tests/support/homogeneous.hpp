@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "peridot/solvers/bond_loop.hpp"
+#include "peridot/materials/bond_loop.hpp"
 #include "peridot/solvers/simulation.hpp"
 #include "support/problems.hpp"
 

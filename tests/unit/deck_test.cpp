@@ -11,7 +11,7 @@
 #include <fmt/format.h>
 
 #include "peridot/deck/deck.hpp"
-#include "peridot/loads/expression.hpp"
+#include "peridot/deck/expression.hpp"
 #include "peridot/materials/registry.hpp"
 #include "peridot/solvers/simulation.hpp"
 

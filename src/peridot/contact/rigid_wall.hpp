@@ -17,7 +17,7 @@
 
 #include "peridot/core/vec3.hpp"
 #include "peridot/deck/problem.hpp"
-#include "peridot/solvers/internal_force.hpp"
+#include "peridot/materials/model_context.hpp"
 #include "peridot/state/fields.hpp"
 
 namespace peridot {

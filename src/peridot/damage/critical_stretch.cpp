@@ -1,6 +1,6 @@
 #include "peridot/damage/critical_stretch.hpp"
 
-#include "peridot/solvers/bond_loop.hpp"
+#include "peridot/materials/bond_loop.hpp"
 
 namespace peridot {
 

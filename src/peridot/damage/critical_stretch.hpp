@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "peridot/solvers/internal_force.hpp"
+#include "peridot/materials/model_context.hpp"
 
 namespace peridot {
 

@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "peridot/loads/expression.hpp"
+#include "peridot/deck/expression.hpp"
 
 namespace peridot {
 

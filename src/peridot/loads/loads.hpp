@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "peridot/deck/problem.hpp"
-#include "peridot/loads/expression.hpp"
+#include "peridot/deck/expression.hpp"
 #include "peridot/loads/node_sets.hpp"
 #include "peridot/state/fields.hpp"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "peridot/solvers/bond_loop.hpp"
+#include "peridot/materials/bond_loop.hpp"
 
 namespace peridot {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "peridot/solvers/bond_loop.hpp"
+#include "peridot/materials/bond_loop.hpp"
 
 namespace peridot {
 

@@ -10,26 +10,10 @@
 #include "peridot/core/avx512_gather.hpp"
 #include "peridot/core/error.hpp"
 #include "peridot/damage/critical_stretch.hpp"
-#include "peridot/solvers/bond_loop.hpp"
+#include "peridot/materials/bond_loop.hpp"
 #include "peridot/state/bond_runs.hpp"
 
 namespace peridot {
-
-bool ModelContext::any_dilatation() const {
-  return std::any_of(params.begin(), params.end(),
-                     [](const MaterialParams& p) { return with_model(p.model, [](auto m) { return m.uses_dilatation; }); });
-}
-
-bool ModelContext::any_damage() const {
-  return std::any_of(params.begin(), params.end(), [](const MaterialParams& p) { return std::isfinite(p.critical_stretch); });
-}
-
-int ModelContext::bond_history_arrays() const {
-  int arrays = 0;
-  for (const MaterialParams& p : params)
-    arrays = std::max(arrays, with_model(p.model, [](auto m) { return decltype(m)::bond_history_arrays; }));
-  return arrays;
-}
 
 void calibrate_models(ModelContext& ctx) {
   const bool plastic = std::any_of(ctx.params.begin(), ctx.params.end(),

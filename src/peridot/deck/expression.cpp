@@ -1,4 +1,4 @@
-#include "peridot/loads/expression.hpp"
+#include "peridot/deck/expression.hpp"
 
 #include <algorithm>
 #include <numbers>

@@ -7,7 +7,7 @@
 
 #include "peridot/materials/dispatch.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
-#include "peridot/solvers/internal_force.hpp"
+#include "peridot/materials/model_context.hpp"
 
 namespace peridot::bond_loop {
 
