@@ -16,6 +16,7 @@ def main():
     p = argparse.ArgumentParser()
     p.add_argument("--out", default=os.path.join(HERE, "out"))
     p.add_argument("--check", action="store_true")
+    p.add_argument("--png", default=os.path.join(HERE, "load_displacement.png"))
     a = p.parse_args()
     rows = list(csv.DictReader(open(os.path.join(a.out, "history.csv"))))
     opening = np.array([2 * GRIP * float(r["load_factor"]) for r in rows]) * 1e6  # µm, grip to grip
@@ -54,8 +55,8 @@ def main():
     right.set_title("damage at the last load step")
     fig.colorbar(sc, ax=right, label="damage")
     fig.tight_layout()
-    fig.savefig(os.path.join(HERE, "load_displacement.png"), dpi=110)
-    print("wrote", os.path.join(HERE, "load_displacement.png"))
+    fig.savefig(a.png, dpi=110)
+    print("wrote", a.png)
     return 0 if (rises and falls) or not a.check else 1
 
 

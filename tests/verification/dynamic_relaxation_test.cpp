@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <string>
 
 #include "peridot/deck/deck.hpp"
@@ -22,11 +23,11 @@ constexpr double E = 200e9, nu = 0.3, strain = 1e-3;
 /// A bar along x, centred on the origin (n_x × n × n lattice points), gripped over a horizon at each end,
 /// where the classical solution of uniaxial stress is imposed (u_x = ε x, u_y = −ν ε y, u_z = −ν ε z, so
 /// that the grips' extent does not matter), free elsewhere, relaxed in `load_steps` steps.
-Problem bar_problem(int nx, int n, int load_steps) {
+Problem bar_problem(int nx, int n, int load_steps, ModelKind model = ModelKind::lps, double shear_factor = 1) {
   BlockSetup s;
-  s.model = ModelKind::lps;
+  s.model = model;
   s.bulk_modulus = E / (3 * (1 - 2 * nu));
-  s.shear_modulus = E / (2 * (1 + nu));
+  s.shear_modulus = shear_factor * E / (2 * (1 + nu));
   s.spacing = 1.5e-3;
   s.cells[0] = nx;
   s.cells[1] = s.cells[2] = n;
@@ -120,6 +121,44 @@ TEST(DynamicRelaxation, LoadStepsReachTheSameEquilibrium) {
       difference = std::max(difference, std::abs(once.state().u(i, d) - twice.state().u(i, d)));
     }
   EXPECT_LT(difference, 1e-6 * largest);
+}
+
+/// Largest |u_a − u_b| over the largest |u_a|.
+double relative_difference(const Simulation& a, const Simulation& b) {
+  double largest = 0, difference = 0;
+  for (std::size_t i = 0; i < a.discretization().num_points(); ++i)
+    for (int d = 0; d < 3; ++d) {
+      largest = std::max(largest, std::abs(a.state().u(i, d)));
+      difference = std::max(difference, std::abs(a.state().u(i, d) - b.state().u(i, d)));
+    }
+  return difference / largest;
+}
+
+TEST(DynamicRelaxation, ViscoelasticBarRelaxesInRealTime) {
+  // A standard linear solid held at a fixed stretch: each load step relaxes to equilibrium with the back
+  // extensions advanced over the real Δt. Right after loading (Δt = τ_b/10⁴) the bar is the glassy LPS
+  // solid (shear modulus G); 20 τ_b later it is the relaxed one, (1 − λ_i) G (same bulk modulus).
+  const double tau = 1e-5, lambda = 0.5;
+  auto viscoelastic = [&](double end_time, int load_steps) {
+    Problem p = bar_problem(16, 7, load_steps, ModelKind::lps_viscoelastic);
+    p.materials[0].relaxing_fraction = lambda;
+    p.materials[0].relaxation_time = tau;
+    p.solver.ramp = false;  // the stretch is held from the first load step on
+    p.solver.end_time = end_time;
+    return p;
+  };
+  auto solve = [](const Problem& p) {
+    auto sim = std::make_unique<Simulation>(p);
+    sim->initialize();
+    while (sim->state().step < sim->total_steps()) sim->step();
+    return sim;
+  };
+  const auto glassy = solve(bar_problem(16, 7, 1)), relaxed = solve(bar_problem(16, 7, 1, ModelKind::lps, 1 - lambda));
+  const auto early = solve(viscoelastic(1e-4 * tau, 1)), late = solve(viscoelastic(20 * tau, 40));
+  const double glassy_vs_relaxed = relative_difference(*glassy, *relaxed);
+  EXPECT_GT(glassy_vs_relaxed, 1e-2);  // the two limits are far apart
+  EXPECT_LT(relative_difference(*early, *glassy), 2e-3 * glassy_vs_relaxed);
+  EXPECT_LT(relative_difference(*late, *relaxed), 2e-3 * glassy_vs_relaxed);
 }
 
 TEST(DynamicRelaxation, IterationLimitNamesTheResidualReached) {
