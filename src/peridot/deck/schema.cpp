@@ -13,6 +13,7 @@
 
 #include "peridot/core/error.hpp"
 #include "peridot/materials/registry.hpp"
+#include "peridot/state/point_fields.hpp"
 
 namespace peridot {
 
@@ -169,6 +170,13 @@ std::vector<KeySpec> with_node_set(std::vector<KeySpec> keys, bool required) {
                              .description = required ? "node set it applies to" : "node set it applies to; default every point",
                              .required = required});
   return keys;
+}
+
+/// The fields a history probe may sample (state/point_fields.hpp).
+std::vector<std::string_view> probe_choices() {
+  std::vector<std::string_view> choices;
+  for (const std::string& name : probe_field_names()) choices.push_back(name);
+  return choices;
 }
 
 KeySpec solver_type_key() {
@@ -365,8 +373,7 @@ std::vector<SectionSpec> make_sections() {
                {{.key = "name", .type = VT::text, .description = "column name", .required = true},
                 {.key = "point", .type = VT::point, .description = "position (m)", .required = true},
                 {.key = "field", .type = VT::choice, .description = "sampled field", .required = true,
-                 .choices = {"displacement_x", "displacement_y", "displacement_z", "velocity_x", "velocity_y", "velocity_z",
-                             "damage", "dilatation", "equivalent_plastic_strain", "dissipation"}}}});
+                 .choices = probe_choices()}}});
   return s;
 }
 

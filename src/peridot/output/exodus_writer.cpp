@@ -45,19 +45,19 @@ std::vector<char*> name_pointers(std::vector<std::string>& names) {
 }
 
 std::vector<std::string> nodal_variable_names(int dimension, const std::vector<std::string>& extra_fields) {
-  static const char* const axis[] = {"_x", "_y", "_z"};
   std::vector<std::string> names;
-  for (const char* field : {"displacement", "velocity", "force_density"})
-    for (int d = 0; d < dimension; ++d) names.push_back(std::string(field) + axis[d]);
-  for (const char* scalar : {"damage", "dilatation", "weighted_volume", "volume"}) names.emplace_back(scalar);
+  for (const PointField& field : point_fields())
+    if (field.scope == FieldScope::always)
+      for (const std::string& name : variable_names(field, dimension)) names.push_back(name);
   names.insert(names.end(), extra_fields.begin(), extra_fields.end());
   return names;
 }
 
+/// An optional field's values: its State array, or State::point_outputs under its name.
 const std::vector<double>& optional_field(const State& state, const std::string& name) {
-  if (name == "equivalent_plastic_strain") return state.history.plastic_strain;
-  if (name == "dissipation") return state.history.dissipation;
-  if (name == "fragment") return state.fragment;
+  const PointField* field = find_point_field(name);
+  const FieldStorage where = field ? field->in(const_cast<State&>(state)) : FieldStorage{};  // read only
+  if (where.scalar) return *where.scalar;
   return state.point_outputs.at(name);
 }
 
@@ -65,10 +65,9 @@ const std::vector<double>& optional_field(const State& state, const std::string&
 
 const std::vector<std::string>& ExodusWriter::optional_fields() {
   static const std::vector<std::string> names = [] {
-    std::vector<std::string> all = {"equivalent_plastic_strain", "dissipation", "fragment"};
-    const auto& correspondence = correspondence_output_names();
-    all.insert(all.end(), correspondence.begin(), correspondence.end());
-    all.push_back("temperature");  // with thermal_softening (State::point_outputs)
+    std::vector<std::string> all;
+    for (const PointField& field : point_fields())
+      if (field.scope != FieldScope::always) all.emplace_back(field.name);
     return all;
   }();
   return names;
@@ -341,21 +340,23 @@ void ExodusWriter::write_frame(double time, const State& state) {
   const auto count = static_cast<int64_t>(n);
   int var = 1;  // Exodus variable indices are 1-based, in variable_names_ order
 
-  for (const VectorField* field : {&state.u, &state.v, &state.force}) {
-    for (int d = 0; d < dimension_; ++d) {
-      for (std::size_t i = 0; i < n; ++i) buffer_[i] = (*field)(i, d);
-      check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, buffer_.data()), "ex_put_var");
+  for (const PointField& field : point_fields()) {
+    if (field.scope != FieldScope::always) continue;
+    const FieldStorage where = field.in(const_cast<State&>(state));  // read only
+    if (where.vector) {
+      for (int d = 0; d < dimension_; ++d) {
+        for (std::size_t i = 0; i < n; ++i) buffer_[i] = (*where.vector)(i, d);
+        check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, buffer_.data()), "ex_put_var");
+      }
+      continue;
     }
-  }
-  for (const std::vector<double>* field : {&state.damage, &state.dilatation, &state.weighted_volume}) {
-    const double* values = field->data();
-    if (field->empty()) {
+    const double* values = where.scalar ? where.scalar->data() : volume_.data();  // no storage: the volume
+    if (where.scalar && where.scalar->empty()) {
       std::fill(buffer_.begin(), buffer_.end(), 0.0);
       values = buffer_.data();
     }
     check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, values), "ex_put_var");
   }
-  check(ex_put_var(exoid_, step, EX_NODAL, var++, 1, count, volume_.data()), "ex_put_var");
   for (const std::string& name : extra_fields_) {
     const std::vector<double>& field = optional_field(state, name);
     PERIDOT_REQUIRE(field.size() == n, "optional state field does not match the discretization");

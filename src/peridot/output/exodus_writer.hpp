@@ -12,15 +12,13 @@
 //    ascending point index; element_points() gives the point of every element in that order, and the element
 //    number map (elem_num_map) holds the node id of each element's point so that element ids = node ids.
 //  - Node sets: ids 1, 2, … in the order given, with their names, 0-based point indices stored as node k+1.
-//  - Nodal variables, in this order and with exactly these names (2D: no *_z):
+//  - Nodal variables: the fields of the point-field registry (state/point_fields.hpp) in its order, with its
+//    names (a vector field as name_x, name_y[, name_z]; 2D: no *_z): first every field of scope `always`,
 //      displacement_x, displacement_y, displacement_z, velocity_x, velocity_y, velocity_z,
 //      force_density_x, force_density_y, force_density_z, damage, dilatation, weighted_volume, volume
-//    and after those the optional fields the writer was made with (extra_fields), in the order given:
-//      equivalent_plastic_strain, dissipation   (State::history: ε̄p, dissipated energy density J/m³)
-//      fragment                                  (State::fragment: the fragment label, damage/fragments.hpp)
-//      deformation_gradient_xx … von_mises_stress … green_lagrange_strain_zx
-//                                                (State::point_outputs, correspondence_output_names())
-//      temperature                               (State::point_outputs: K, with thermal_softening)
+//    then the optional fields the writer was made with (extra_fields), in the order given (the runner
+//    gives them in registry order): equivalent_plastic_strain, dissipation, the correspondence fields
+//    (deformation_gradient_xx … von_mises_stress … green_lagrange_strain_zx), temperature, fragment.
 //    force_density is State::force (internal force density). volume is constant, yet written every frame:
 //    an Exodus nodal variable has a value per time step, and a reader looking at frame k of a variable
 //    written only at frame 1 would see fill values. The cost is one double per point per frame.
@@ -36,6 +34,7 @@
 #include <vector>
 
 #include "peridot/state/fields.hpp"
+#include "peridot/state/point_fields.hpp"
 
 namespace peridot {
 

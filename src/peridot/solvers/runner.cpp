@@ -14,44 +14,36 @@
 #include "peridot/materials/registry.hpp"
 #include "peridot/output/csv_writer.hpp"
 #include "peridot/output/exodus_writer.hpp"
+#include "peridot/state/point_fields.hpp"
 
 namespace peridot {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string>& point_field_names() {
-  static const std::vector<std::string> names = {
-      "displacement_x", "displacement_y", "displacement_z", "velocity_x", "velocity_y", "velocity_z",
-      "force_density_x", "force_density_y", "force_density_z", "damage", "dilatation", "weighted_volume",
-      "equivalent_plastic_strain", "dissipation", "fragment"};
-  return names;
-}
-
 double point_field(const State& state, const std::string& field, std::size_t i) {
-  const int component = field.back() - 'x';  // for the vector fields, whose names end in _x, _y or _z
-  if (field.rfind("displacement_", 0) == 0) return state.u(i, component);
-  if (field.rfind("velocity_", 0) == 0) return state.v(i, component);
-  if (field.rfind("force_density_", 0) == 0) return state.force(i, component);
-  if (field == "damage") return state.damage[i];
-  if (field == "dilatation") return state.dilatation[i];
-  if (field == "weighted_volume") return state.weighted_volume[i];
-  if (field == "equivalent_plastic_strain") return state.history.plastic_strain[i];
-  if (field == "dissipation") return state.history.dissipation[i];
-  if (field == "fragment") return state.fragment.empty() ? 0.0 : state.fragment[i];
-  throw std::out_of_range("unknown point field '" + field + "'");
+  int component = 0;
+  const PointField* entry = find_point_field(field, &component);
+  if (!entry || !entry->probe) throw std::out_of_range("unknown point field '" + field + "'");
+  return entry->value(state, i, component);
 }
 
-/// The optional Exodus fields a problem needs: plastic strain and dissipation with an inelastic model,
-/// fragment labels with damage, and with correspondence blocks also F, σ, von Mises stress and the
-/// Green–Lagrange strain (CorrespondenceBlocks::output_field_names).
+/// The optional Exodus fields a problem writes (registry order): plastic strain and dissipation with an
+/// inelastic model, the correspondence fields with correspondence blocks (and temperature with thermal
+/// softening), fragment labels with damage.
 std::vector<std::string> optional_exodus_fields(const Simulation& sim) {
+  const bool correspondence = sim.has_correspondence();
   std::vector<std::string> fields;
-  if (sim.model().bond_history_arrays() > 0 || sim.has_correspondence())
-    fields = {"equivalent_plastic_strain", "dissipation"};
-  if (sim.has_correspondence())
-    for (const std::string& name : CorrespondenceBlocks::output_field_names()) fields.push_back(name);
-  if (sim.has_correspondence() && any_thermal_softening(sim.model())) fields.push_back("temperature");
-  if (sim.model().any_damage()) fields.push_back("fragment");
+  for (const PointField& field : point_fields()) {
+    bool written = false;
+    switch (field.scope) {
+      case FieldScope::always: break;
+      case FieldScope::inelastic: written = sim.model().bond_history_arrays() > 0 || correspondence; break;
+      case FieldScope::correspondence: written = correspondence; break;
+      case FieldScope::thermal: written = correspondence && any_thermal_softening(sim.model()); break;
+      case FieldScope::damage: written = sim.model().any_damage(); break;
+    }
+    if (written) fields.emplace_back(field.name);
+  }
   return fields;
 }
 

@@ -22,10 +22,8 @@ void run_problem(const Problem& problem, const RunOptions& options);
 /// The summary `peridot check` prints: points, bonds, memory, time steps.
 std::string describe_setup(const Simulation& simulation);
 
-/// Value of a named point field ("displacement_x", "damage", …) at point i; throws std::out_of_range for
-/// an unknown name.
+/// Value of a probe field ("displacement_x", "damage", …; probe_field_names() in state/point_fields.hpp)
+/// at point i; throws std::out_of_range for a name that is not one.
 double point_field(const State& state, const std::string& field, std::size_t i);
-/// The field names point_field accepts.
-const std::vector<std::string>& point_field_names();
 
 }  // namespace peridot

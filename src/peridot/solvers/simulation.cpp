@@ -10,6 +10,7 @@
 #include "peridot/damage/fragments.hpp"
 #include "peridot/materials/registry.hpp"
 #include "peridot/parallel/domain.hpp"
+#include "peridot/state/point_fields.hpp"
 
 namespace peridot {
 
@@ -281,14 +282,12 @@ void Simulation::gather_outputs(bool fields, bool totals) {
       std::copy(buffer.begin(), buffer.end(), global.data());
     }
   };
-  vector_field(state_.u, g.u);
-  vector_field(state_.v, g.v);
-  vector_field(state_.force, g.force);
-  gather_field(state_.damage.data(), 1, g.damage);
-  gather_field(state_.dilatation.data(), 1, g.dilatation);
-  gather_field(state_.history.plastic_strain.data(), 1, g.history.plastic_strain);
-  gather_field(state_.history.dissipation.data(), 1, g.history.dissipation);
-  gather_field(state_.fragment.data(), 1, g.fragment);
+  for (const PointField& field : point_fields()) {  // what is stored in State (the volume is constant)
+    if (field.constant) continue;
+    const FieldStorage local = field.in(state_), global = field.in(g);
+    if (local.vector) vector_field(*local.vector, *global.vector);
+    else if (local.scalar) gather_field(local.scalar->data(), 1, *global.scalar);
+  }
   gather_field(work_.data(), 1, global_work_);
   if (totals) gather_field(energy_density_.data(), 1, global_energy_density_);
   if (has_correspondence()) {

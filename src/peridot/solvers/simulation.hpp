@@ -123,7 +123,7 @@ class Simulation {
   /// Throws, on every rank, the first failing rank's NumericalError (message empty: none). Collective;
   /// its time counts as communication.
   void agree_on_failure(const std::string& message);
-  /// ρ of each block (kg/m³).
+  /// ρ of the point's block (kg/m³).
   double density_of(std::size_t point) const { return model_.params[disc_.block[point]].density; }
   /// Whether some material may break bonds.
   bool any_damage() const { return any_damage_; }
