@@ -91,29 +91,32 @@ void DynamicRelaxation::evaluate_residual_force(std::vector<double>& F) {
     F[k] = kind[k] == DofKind::free ? f[k] + (body ? b[k] : 0.0) + (w ? w[k] : 0.0) : 0.0;
 }
 
-double DynamicRelaxation::norm(const std::vector<double>& w) const {
+template <class Value>
+double DynamicRelaxation::weighted_norm(Value&& value) const {
   const double* volume = sim_.discretization().volume.data();
-  const double sum = reproducible_sum(sim_.communicator(), w.size(), [&](std::size_t k) {
-    const double value = w[k] * volume[k / 3];
-    return value * value;
+  const double sum = reproducible_sum(sim_.communicator(), 3 * sim_.num_owned(), [&](std::size_t k) {
+    const double f = value(k) * volume[k / 3];
+    return f * f;
   });
   return std::sqrt(sum);
+}
+
+double DynamicRelaxation::norm(const std::vector<double>& w) const {
+  return weighted_norm([&](std::size_t k) { return w[k]; });
 }
 
 double DynamicRelaxation::relative_residual(const std::vector<double>& F, double start_norm) const {
   const State& state = sim_.state();
   const auto& kind = sim_.loads().dof_kinds();
-  const std::size_t dofs = F.size();
   const double* f = state.force.data();
   const double* b = state.body_force.data();
   const double* w = sim_.has_walls() ? sim_.wall_force().data() : nullptr;
   const bool body = sim_.loads().has_body_force();
-  std::vector<double> reaction(dofs), applied(dofs);
-  for (std::size_t k = 0; k < dofs; ++k) {
-    reaction[k] = kind[k] == DofKind::free ? 0.0 : f[k];
-    applied[k] = kind[k] == DofKind::free ? (body ? b[k] : 0.0) + (w ? w[k] : 0.0) : 0.0;
-  }
-  const double reference = std::max({norm(reaction), norm(applied), start_norm});
+  const double reaction = weighted_norm([&](std::size_t k) { return kind[k] == DofKind::free ? 0.0 : f[k]; });
+  const double applied = weighted_norm([&](std::size_t k) {
+    return kind[k] == DofKind::free ? (body ? b[k] : 0.0) + (w ? w[k] : 0.0) : 0.0;
+  });
+  const double reference = std::max({reaction, applied, start_norm});
   const double residual = norm(F);
   if (!std::isfinite(residual)) return residual;
   return reference > 0 ? residual / reference : 0.0;

@@ -54,8 +54,10 @@ class DynamicRelaxation final : public TimeIntegrator {
   void evaluate_residual_force(std::vector<double>& F);
   /// Relative residual of F (see the header) with the supports' reaction from the current force.
   double relative_residual(const std::vector<double>& F, double start_norm) const;
-  /// Euclidean norm over the owned dofs of w_k (collective, reproducible).
+  /// Euclidean norm of w_k V over the owned dofs (collective, reproducible).
   double norm(const std::vector<double>& w) const;
+  template <class Value>
+  double weighted_norm(Value&& value) const;
   void set_loads(double t, double factor);
 
   Simulation& sim_;
