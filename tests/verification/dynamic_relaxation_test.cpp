@@ -3,6 +3,7 @@
 // stops naming the residual reached; the deck refuses what a static solution cannot have.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -184,6 +185,38 @@ TEST(DynamicRelaxation, CorrespondenceBarRelaxesToTheUniaxialSolution) {
   // neighbourhood stretches less), and the contraction ratio −ε_y/ε_x = 0.2999.
   EXPECT_NEAR(axial, strain, 0.02 * strain);
   EXPECT_NEAR(-lateral / axial, nu, 0.01 * nu);
+}
+
+TEST(DynamicRelaxation, BodyForceIsCarriedByTheSupportInEveryLoadStep) {
+  // A bar held at its left grip (u = 0) under a body force along it, ramped over two load steps: at each
+  // equilibrium the support carries the load factor times the weight of the free points, to the tolerance.
+  Problem p = bar_problem(16, 7, 2);
+  p.solver.tolerance = 1e-8;
+  p.boundary_conditions.erase(std::remove_if(p.boundary_conditions.begin(), p.boundary_conditions.end(),
+                                             [](const BoundaryConditionSpec& bc) { return bc.node_set == "right"; }),
+                              p.boundary_conditions.end());
+  for (BoundaryConditionSpec& bc : p.boundary_conditions) bc.value = Expression{"0", {}, false};
+  const double gravity = 7800 * 9.81 * 1e4;  // N/m³: a large g, so that the bar stretches visibly
+  BodyForceSpec weight;
+  weight.component[0] = Expression{std::to_string(gravity), {}, false};
+  p.body_forces.push_back(weight);
+  Simulation sim(p);
+  sim.initialize();
+  const NodeSet* left = nullptr;
+  for (const NodeSet& set : sim.output_node_sets())
+    if (set.name == "left") left = &set;
+  ASSERT_NE(left, nullptr);
+  double free_volume = 0;
+  std::vector<std::uint8_t> held(sim.discretization().num_points(), 0);
+  for (std::uint32_t i : left->points) held[i] = 1;
+  for (std::size_t i = 0; i < held.size(); ++i)
+    if (!held[i]) free_volume += sim.discretization().volume[i];
+  for (int k = 1; k <= 2; ++k) {
+    sim.step();
+    const double expected = 0.5 * k * gravity * free_volume;
+    EXPECT_NEAR(sim.reaction(*left).x, -expected, 1e-6 * expected) << "load step " << k;
+  }
+  EXPECT_GT(sim.state().u(sim.discretization().num_points() - 1, 0), 0);  // it stretches along the load
 }
 
 TEST(DynamicRelaxation, IterationLimitNamesTheResidualReached) {

@@ -74,11 +74,16 @@ void Loads::apply_displacement_conditions(double t, double factor, VectorField& 
 
 void Loads::update_body_force(double t, VectorField& b) {
   if (body_forces_.empty() || (body_force_evaluated_ && !body_force_time_dependent_)) return;
+  evaluate_body_force(t, b);
+  body_force_evaluated_ = true;
+}
+
+void Loads::evaluate_body_force(double t, VectorField& b) const {
+  if (b.size() != disc_.num_points()) b.resize(disc_.num_points());
   std::fill(b.data(), b.data() + 3 * b.size(), 0.0);
   for (const Field& field : body_forces_)
     for (std::uint32_t i : *field.points)
       b(i, field.component) += field.value(disc_.x(i, 0), disc_.x(i, 1), disc_.x(i, 2), t);
-  body_force_evaluated_ = true;
 }
 
 }  // namespace peridot

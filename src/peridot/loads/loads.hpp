@@ -27,8 +27,11 @@ class Loads {
   void apply_displacement_conditions(double t, double dt, VectorField& u, VectorField& v) const;
   /// Prescribed displacements at time t scaled by `factor` (quasi-static load steps); velocities untouched.
   void apply_displacement_conditions(double t, double factor, VectorField& u) const;
-  /// Body force density at time t (evaluated once when no expression depends on t).
+  /// Body force density at time t into b, the field of the explicit solver (evaluated once when no
+  /// expression depends on t).
   void update_body_force(double t, VectorField& b);
+  /// Body force density at time t into b, every call (sized to the points).
+  void evaluate_body_force(double t, VectorField& b) const;
 
   /// Per degree of freedom (3 per point): free or prescribed.
   const std::vector<DofKind>& dof_kinds() const { return dof_kind_; }

@@ -37,8 +37,7 @@ void DynamicRelaxation::set_loads(double t, double factor) {
   loads.apply_displacement_conditions(t, factor, state.u);
   sim_.exchange_ghosts(state.u);
   if (loads.has_body_force()) {
-    if (body_force_.size() != state.u.size()) body_force_.resize(state.u.size());
-    loads.update_body_force(t, body_force_);
+    loads.evaluate_body_force(t, body_force_);
     const double* b = body_force_.data();
     double* out = state.body_force.data();
     for (std::size_t k = 0; k < 3 * state.u.size(); ++k) out[k] = factor * b[k];
