@@ -1,6 +1,7 @@
 #pragma once
 // The one place that maps a ModelKind to its kernel type: adding a model adds one case here.
 // Bond loops are instantiated per (dimension, model) pair, so no call inside a loop is virtual.
+#include <array>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -18,6 +19,7 @@ namespace peridot {
 struct CorrespondenceTag {
   static constexpr bool uses_dilatation = false;
   static constexpr int bond_history_arrays = 0;
+  static constexpr std::array<std::vector<double> MaterialHistory::*, 0> partner_point_scratch{};
 };
 
 template <class F>

@@ -10,15 +10,19 @@
 // One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v, α_d) = (3, 3K, 15G) in 3D
 // and (2, 2K′, 8G) in 2D; W = α_v θ²/(2n) + (α_d/2m) Σ ω (e − θξ/n)² V. Since Σ ω ξ (e − θξ/n) V = 0,
 // t = ∂W/∂e exactly.
+#include <array>
 #include <cstdint>
 
 #include "peridot/materials/material.hpp"
+#include "peridot/state/fields.hpp"
 
 namespace peridot {
 
 struct Lps {
   static constexpr bool uses_dilatation = true;
   static constexpr int bond_history_arrays = 0;
+  /// Per-point scratch of this model that a partner's force reads (exchanged to ghosts): none.
+  static constexpr std::array<std::vector<double> MaterialHistory::*, 0> partner_point_scratch{};
   /// The extension a bond adds to the dilatation sum.
   static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
 

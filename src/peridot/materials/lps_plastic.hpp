@@ -42,6 +42,7 @@
 //   (P8) a bond that breaks takes its share ρ = Σ_broken now ω ξ (e − e^dp) V / m out of θ, which would shift
 //        e^d of every surviving bond by ρξ at once. The step in which bonds break moves the same ρξ into e^dp
 //        of the survivors, so that their elastic state is continuous and breaking only releases energy.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -56,6 +57,10 @@ struct ModelContext;
 struct LpsPlastic {
   static constexpr bool uses_dilatation = true;
   static constexpr int bond_history_arrays = 1;
+  /// What the force of a partner reads of a point's return map (P8, force_scalar): exchanged to ghosts
+  /// after prepare.
+  static constexpr std::array<std::vector<double> MaterialHistory::*, 3> partner_point_scratch = {
+      &MaterialHistory::released_extension, &MaterialHistory::yield_scale, &MaterialHistory::deviatoric_moment};
 
   /// (P7) θ measures the elastic volume change: e − e^dp (equal to e's sum on a full family).
   static double dilatation_extension(const KernelFields& s, std::uint64_t b, double e) { return e - s.bond0[b]; }

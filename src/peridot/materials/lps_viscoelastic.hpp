@@ -15,6 +15,7 @@
 // λ_i = 0 is the elastic LPS; λ_i = 1 relaxes the shear completely (a nonlocal Maxwell fluid in shear).
 // History: MaterialHistory::bond[0] = e^b and bond[1] = e^d of the last completed step, per bond;
 // dissipation = D per point. Instantaneous (glassy) response α_d, relaxed (equilibrium) (1 − λ_i) α_d.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -29,6 +30,8 @@ struct ModelContext;
 struct LpsViscoelastic {
   static constexpr bool uses_dilatation = true;
   static constexpr int bond_history_arrays = 2;
+  /// Per-point scratch of this model that a partner's force reads (exchanged to ghosts): none.
+  static constexpr std::array<std::vector<double> MaterialHistory::*, 0> partner_point_scratch{};
   /// The extension a bond adds to the dilatation sum.
   static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
 

@@ -23,4 +23,14 @@ int ModelContext::bond_history_arrays() const {
   return arrays;
 }
 
+std::vector<std::vector<double> MaterialHistory::*> ModelContext::partner_point_scratch() const {
+  std::vector<std::vector<double> MaterialHistory::*> fields;
+  for (const MaterialParams& p : params)
+    with_model(p.model, [&](auto model) {
+      for (auto field : decltype(model)::partner_point_scratch)
+        if (std::find(fields.begin(), fields.end(), field) == fields.end()) fields.push_back(field);
+    });
+  return fields;
+}
+
 }  // namespace peridot

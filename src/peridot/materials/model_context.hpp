@@ -41,6 +41,9 @@ struct ModelContext {
   bool any_damage() const;
   /// The most per-bond history arrays any block's model needs (0: no inelastic model).
   int bond_history_arrays() const;
+  /// The per-point scratch arrays the present models declare that a partner's force reads
+  /// (partner_point_scratch of each model), each once, in the order the models declare them.
+  std::vector<std::vector<double> MaterialHistory::*> partner_point_scratch() const;
 };
 
 }  // namespace peridot

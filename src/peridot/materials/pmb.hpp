@@ -6,15 +6,19 @@
 // strain gives the classical energy density (3D: W = 9Ks²/2 → c0 = 9K / (2π ∫₀^δ ω ξ³ dξ), which is
 // 18K/(πδ⁴) for ω = 1; 2D, thickness h: W = 2K′s² → c0 = 4K′ / (πh ∫₀^δ ω ξ² dξ), 12K′/(πhδ³) for ω = 1).
 // Bond-based models force ν = 1/4 (3D, plane strain) or 1/3 (plane stress).
+#include <array>
 #include <cstdint>
 
 #include "peridot/materials/material.hpp"
+#include "peridot/state/fields.hpp"
 
 namespace peridot {
 
 struct Pmb {
   static constexpr bool uses_dilatation = false;
   static constexpr int bond_history_arrays = 0;
+  /// Per-point scratch of this model that a partner's force reads (exchanged to ghosts): none.
+  static constexpr std::array<std::vector<double> MaterialHistory::*, 0> partner_point_scratch{};
   /// The extension a bond adds to the dilatation sum.
   static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
 

@@ -100,8 +100,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   any_dilatation_ = model_.any_dilatation();
   any_damage_ = model_.any_damage();
   history_arrays_ = model_.bond_history_arrays();
-  any_plastic_ = std::any_of(model_.params.begin(), model_.params.end(),
-                             [](const MaterialParams& p) { return p.model == ModelKind::lps_plastic; });
+  partner_scratch_ = model_.partner_point_scratch();
 
   state_.resize(disc_.num_points());
   if (history_arrays_ > 0) state_.size_history(bonds_.num_bonds() + bonds_.partner_slots, history_arrays_);
@@ -160,11 +159,7 @@ void Simulation::evaluate(double dt, bool break_bonds) {
   if (history_arrays_ > 0) {
     set_time_step(model_.params, dt);
     prepare_history(model_, state_.u, state_.dilatation, state_.history);
-    if (any_plastic_) {  // what the force of a plastic point's partner reads of it (lps_plastic.hpp)
-      halo_.exchange(state_.history.released_extension);
-      halo_.exchange(state_.history.yield_scale);
-      halo_.exchange(state_.history.deviatoric_moment);
-    }
+    for (auto field : partner_scratch_) halo_.exchange(state_.history.*field);  // what partners' forces read
   }
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, fail && fail_in_force_pass,
                          &state_.history);

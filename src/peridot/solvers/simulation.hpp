@@ -202,7 +202,9 @@ class Simulation {
   std::int64_t total_steps_ = 0;
   std::unique_ptr<TimeIntegrator> integrator_;
   std::vector<double> work_;  ///< J, external work done on each point since t = 0
-  bool any_dilatation_ = false, any_damage_ = false, any_plastic_ = false;
+  bool any_dilatation_ = false, any_damage_ = false;
+  /// The per-point scratch the present models' partners read (ModelContext::partner_point_scratch).
+  std::vector<std::vector<double> MaterialHistory::*> partner_scratch_;
   int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
   bool correspondence_failed_ = false;  ///< the last evaluate() failed in a correspondence block
   std::int64_t fragments_step_ = -1;  ///< the step state_.fragment was labelled at (-1: never)
