@@ -193,7 +193,7 @@ std::uint64_t Simulation::break_bonds() {
   const std::uint64_t before = count();
   if (any_dilatation_ && !model_.bond_failure_after_force) {
     std::vector<double> theta;
-    compute_dilatation(model_, state_.u, theta, true, nullptr);
+    compute_dilatation(model_, state_.u, theta, true, &state_.history);  // e − e^dp for lps_plastic
   } else {
     VectorField f(disc_.num_points());
     std::vector<double> theta = state_.dilatation;
