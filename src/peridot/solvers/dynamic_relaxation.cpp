@@ -117,7 +117,8 @@ double DynamicRelaxation::relative_residual(const std::vector<double>& F, double
   });
   const double reference = std::max({reaction, applied, start_norm});
   const double residual = norm(F);
-  if (!std::isfinite(residual)) return residual;
+  if (!std::isfinite(residual) || !std::isfinite(reaction) || !std::isfinite(applied))
+    return std::numeric_limits<double>::quiet_NaN();  // a blow-up anywhere, prescribed dofs included
   return reference > 0 ? residual / reference : 0.0;
 }
 
