@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "peridot/solvers/simulation.hpp"
+#include "support/displacement_fit.hpp"
 #include "support/problems.hpp"
 
 namespace peridot {
@@ -172,21 +173,10 @@ TEST(LpsBar, ContractsLaterallyByPoissonRatio) {
   while (sim.state().step < sim.total_steps()) sim.step();
 
   // Strains from least-squares slopes over the interior of the mid-section.
-  const Discretization& disc = sim.discretization();
-  const State& state = sim.state();
-  auto slope = [&](int along, int component, auto&& select) {
-    double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
-    for (std::size_t i = 0; i < disc.num_points(); ++i) {
-      if (!select(disc.x.get(i))) continue;
-      const double x = disc.x(i, along), y = state.u(i, component);
-      sx += x, sy += y, sxx += x * x, sxy += x * y, n += 1;
-    }
-    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  };
   const double mid = L / 2;
-  const double axial = slope(0, 0, [&](Vec3 x) { return std::abs(x.x - mid) < 0.2 * L; });
+  const double axial = testing::displacement_slope(sim, 0, 0, [&](Vec3 x) { return std::abs(x.x - mid) < 0.2 * L; });
   const double horizon = s.horizon_factor * s.spacing;
-  const double lateral = slope(1, 1, [&](Vec3 x) { return std::abs(x.x - mid) < 2 * s.spacing && std::abs(x.y - H / 2) < H / 2 - horizon; });
+  const double lateral = testing::displacement_slope(sim, 1, 1, [&](Vec3 x) { return std::abs(x.x - mid) < 2 * s.spacing && std::abs(x.y - H / 2) < H / 2 - horizon; });
   EXPECT_GT(axial, 0.5 * strain);  // the bar really is stretched
   EXPECT_NEAR(-lateral / axial, nu, 0.03 * nu) << "axial strain " << axial << ", lateral strain " << lateral;
 }

@@ -56,7 +56,7 @@ std::vector<std::string> nodal_variable_names(int dimension, const std::vector<s
 /// An optional field's values: its State array, or State::point_outputs under its name.
 const std::vector<double>& optional_field(const State& state, const std::string& name) {
   const PointField* field = find_point_field(name);
-  const FieldStorage where = field ? field->in(const_cast<State&>(state)) : FieldStorage{};  // read only
+  const ConstFieldStorage where = field ? field->in(state) : ConstFieldStorage{};
   if (where.scalar) return *where.scalar;
   return state.point_outputs.at(name);
 }
@@ -342,7 +342,7 @@ void ExodusWriter::write_frame(double time, const State& state) {
 
   for (const PointField& field : point_fields()) {
     if (field.scope != FieldScope::always) continue;
-    const FieldStorage where = field.in(const_cast<State&>(state));  // read only
+    const ConstFieldStorage where = field.in(state);
     if (where.vector) {
       for (int d = 0; d < dimension_; ++d) {
         for (std::size_t i = 0; i < n; ++i) buffer_[i] = (*where.vector)(i, d);

@@ -75,7 +75,7 @@ struct CorrespondenceBlocks::Impl {
   CorrespondenceContext ctx;
   KinematicFields kin;
   StressFields stress;     ///< the last evaluate(): trial R, V, τ, and σ and P K⁻¹ (what the force reads)
-  StressFields committed;  ///< R, V, τ at the last commit() (σ and P K⁻¹ unused)
+  StressFields committed;  ///< R, V, τ at the last commit() (σ and P K⁻¹ left empty)
   std::vector<double> inelastic_work;  ///< per point: ΔW_in of the last evaluate() (J/m³)
   std::vector<AnyBlock> blocks;
   std::vector<std::size_t> block_index;  ///< the ModelContext block of each entry of `blocks`
@@ -140,7 +140,10 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   }
   m.damped = std::any_of(m.ctx.hourglass_damping.begin(), m.ctx.hourglass_damping.end(), [](double c) { return c != 0; });
   m.stress.resize(n);
-  m.committed.resize(n);
+  // Only R, V and τ are committed: σ and P K⁻¹ follow from them in every evaluate().
+  m.committed.rotation.assign(n, Mat3::Identity());
+  m.committed.left_stretch.assign(n, Mat3::Identity());
+  m.committed.unrotated_stress.assign(n, Mat3::Zero());
   m.inelastic_work.assign(n, 0.0);
   m.kin.shape_inverse = TensorField(n);
   m.kin.deformation_gradient.assign(n, Mat3::Identity());

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 #include <fmt/format.h>
 
@@ -65,14 +64,7 @@ void DynamicRelaxation::initialize() {
 void DynamicRelaxation::evaluate_residual_force(std::vector<double>& F) {
   State& state = sim_.state();
   const std::size_t dofs = 3 * sim_.num_owned();
-  if (sim_.has_correspondence()) {  // the rate of the load step, which the stress update integrates
-    const double dt = sim_.time_step();
-    double* v = state.v.data();
-    const double* u = state.u.data();
-    const double* u0 = committed_u_.data();
-    for (std::size_t k = 0; k < dofs; ++k) v[k] = dt > 0 ? (u[k] - u0[k]) / dt : 0.0;
-    sim_.exchange_ghosts(state.v);
-  }
+  if (sim_.has_correspondence()) set_step_velocity();  // the rate the stress update integrates
   std::string failure;
   try {
     sim_.evaluate(sim_.time_step(), false);
@@ -82,12 +74,23 @@ void DynamicRelaxation::evaluate_residual_force(std::vector<double>& F) {
   sim_.agree_on_failure(failure);
   const auto& kind = sim_.loads().dof_kinds();
   const double* f = state.force.data();
-  const double* b = state.body_force.data();
-  const double* w = sim_.has_walls() ? sim_.wall_force().data() : nullptr;
-  const bool body = sim_.loads().has_body_force();
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < dofs; ++k)
-    F[k] = kind[k] == DofKind::free ? f[k] + (body ? b[k] : 0.0) + (w ? w[k] : 0.0) : 0.0;
+  for (std::size_t k = 0; k < dofs; ++k) F[k] = kind[k] == DofKind::free ? f[k] + applied_force(k) : 0.0;
+}
+
+double DynamicRelaxation::applied_force(std::size_t k) const {
+  const double b = sim_.loads().has_body_force() ? sim_.state().body_force.data()[k] : 0.0;
+  return sim_.has_walls() ? b + sim_.wall_force().data()[k] : b;
+}
+
+void DynamicRelaxation::set_step_velocity() {
+  State& state = sim_.state();
+  const double dt = sim_.time_step();
+  double* v = state.v.data();
+  const double* u = state.u.data();
+  const double* u0 = committed_u_.data();
+  for (std::size_t k = 0; k < 3 * sim_.num_owned(); ++k) v[k] = dt > 0 ? (u[k] - u0[k]) / dt : 0.0;
+  sim_.exchange_ghosts(state.v);
 }
 
 template <class Value>
@@ -105,16 +108,10 @@ double DynamicRelaxation::norm(const std::vector<double>& w) const {
 }
 
 double DynamicRelaxation::relative_residual(const std::vector<double>& F, double start_norm) const {
-  const State& state = sim_.state();
   const auto& kind = sim_.loads().dof_kinds();
-  const double* f = state.force.data();
-  const double* b = state.body_force.data();
-  const double* w = sim_.has_walls() ? sim_.wall_force().data() : nullptr;
-  const bool body = sim_.loads().has_body_force();
+  const double* f = sim_.state().force.data();
   const double reaction = weighted_norm([&](std::size_t k) { return kind[k] == DofKind::free ? 0.0 : f[k]; });
-  const double applied = weighted_norm([&](std::size_t k) {
-    return kind[k] == DofKind::free ? (body ? b[k] : 0.0) + (w ? w[k] : 0.0) : 0.0;
-  });
+  const double applied = weighted_norm([&](std::size_t k) { return kind[k] == DofKind::free ? applied_force(k) : 0.0; });
   const double reference = std::max({reaction, applied, start_norm});
   const double residual = norm(F);
   if (!std::isfinite(residual) || !std::isfinite(reaction) || !std::isfinite(applied))
@@ -202,26 +199,21 @@ void DynamicRelaxation::advance() {
   set_loads(t, load_factor_);
   iterations_ = 0;
   broken_ = 0;
-  std::fill(velocity_.begin(), velocity_.end(), 0.0);
-  for (;;) {
+  // Relax; break what is over-stretched at equilibrium; relax again (relax() restarts the damped motion
+  // from rest) until nothing breaks.
+  for (std::uint64_t broken = 1; broken > 0; broken_ += broken) {
     relax();
-    const std::uint64_t broken = sim_.break_bonds();
-    broken_ += broken;
-    if (broken == 0) break;
-    std::fill(velocity_.begin(), velocity_.end(), 0.0);  // a new equilibrium: the damped motion restarts
+    broken = sim_.break_bonds();
   }
-  // The state's velocity: the load step's mean.
-  double* v = state.v.data();
-  const double* u = state.u.data();
-  const double* u0 = committed_u_.data();
-  for (std::size_t q = 0; q < 3 * owned; ++q) v[q] = dt > 0 ? (u[q] - u0[q]) / dt : 0.0;
-  sim_.exchange_ghosts(state.v);
+  set_step_velocity();
   sim_.commit(dt);
 
   // External work over the load step, trapezoidal: the supports' −f V on prescribed dofs, the body and
   // wall forces on free ones.
   double* work = sim_.external_work().data();
   const double* volume = disc.volume.data();
+  const double* u = state.u.data();
+  const double* u0 = committed_u_.data();
   const bool body = sim_.loads().has_body_force();
   const bool walls = sim_.has_walls();
 #pragma omp parallel for schedule(static)

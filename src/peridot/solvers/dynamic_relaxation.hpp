@@ -39,19 +39,21 @@ class DynamicRelaxation final : public TimeIntegrator {
   std::vector<std::string> history_columns() const override;
   std::vector<double> history_values() const override;
 
-  /// Iterations of the last equilibrium search in total (all rounds of bond breaking) and the relative
-  /// residual it ended at.
+  /// Iterations of the last load step in total (all rounds of bond breaking) and the relative residual it
+  /// ended at.
   std::int64_t iterations() const { return iterations_; }
   double residual() const { return residual_; }
-  /// Bonds that broke in the last load step (all ranks).
-  std::uint64_t bonds_broken() const { return broken_; }
-  /// Relaxes the current load to equilibrium (no bond breaks, nothing committed); returns the iterations.
-  /// Throws NumericalError past max_iterations. Public for tests and benchmarks.
-  std::int64_t relax();
 
  private:
+  /// Relaxes the current load to equilibrium from rest (no bond breaks, nothing committed); returns the
+  /// iterations. Throws NumericalError past max_iterations.
+  std::int64_t relax();
   /// The force on the free dofs (internal + body + wall), zero on prescribed ones; evaluates first.
   void evaluate_residual_force(std::vector<double>& F);
+  /// Body plus wall force density of dof k (the load factor applied), at the last evaluation.
+  double applied_force(std::size_t k) const;
+  /// state().v = (u − u at the last accepted load step)/Δt, ghosts included.
+  void set_step_velocity();
   /// Relative residual of F (see the header) with the supports' reaction from the current force.
   double relative_residual(const std::vector<double>& F, double start_norm) const;
   /// Euclidean norm of w_k V over the owned dofs (collective, reproducible).

@@ -42,7 +42,7 @@ std::vector<PointField> make_fields() {
 }  // namespace
 
 double PointField::value(const State& state, std::size_t i, int d) const {
-  const FieldStorage where = in(const_cast<State&>(state));  // read only
+  const ConstFieldStorage where = in(state);
   if (where.vector) return (*where.vector)(i, d);
   if (where.scalar) return where.scalar->empty() ? 0.0 : (*where.scalar)[i];
   throw std::logic_error("point field '" + std::string(name) + "' is not stored in State");

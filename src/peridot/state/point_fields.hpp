@@ -27,6 +27,10 @@ struct FieldStorage {
   VectorField* vector = nullptr;
   std::vector<double>* scalar = nullptr;
 };
+struct ConstFieldStorage {
+  const VectorField* vector = nullptr;
+  const std::vector<double>* scalar = nullptr;
+};
 
 struct PointField {
   std::string_view name;  ///< a scalar's name; a vector's stem (its components are name_x, _y, _z)
@@ -39,6 +43,10 @@ struct PointField {
   FieldStorage (*storage)(State&) = nullptr;  ///< null: the volume, or State::point_outputs[name]
 
   FieldStorage in(State& state) const { return storage ? storage(state) : FieldStorage{}; }
+  ConstFieldStorage in(const State& state) const {
+    const FieldStorage where = in(const_cast<State&>(state));  // storage only locates the arrays
+    return {where.vector, where.scalar};
+  }
   /// The field's values at point i, component d (0 for scalars) in a State; not for point_outputs fields
   /// or the volume.
   double value(const State& state, std::size_t i, int d = 0) const;
