@@ -11,7 +11,7 @@
 #include <iostream>
 
 #include "peridot/deck/deck.hpp"
-#include "peridot/materials/registry.hpp"
+#include "peridot/deck/model_schema.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/runner.hpp"
 #include "peridot/solvers/simulation.hpp"

@@ -90,25 +90,28 @@ Problem benchmark_problem(const Options& o) {
   const double E = 200e9, nu = 0.25, K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu));
   MaterialSpec m;
   m.name = "steel";
-  m.model = o.model == "lps"                ? ModelKind::lps
-            : o.model == "lps_plastic"      ? ModelKind::lps_plastic
-            : o.model == "lps_viscoelastic" ? ModelKind::lps_viscoelastic
-            : o.model == "correspondence"   ? ModelKind::correspondence
-                                            : ModelKind::pmb;
-  if (m.model == ModelKind::correspondence) {
-    m.constitutive_law = o.law == "hypoelastic" ? ConstitutiveLawKind::hypoelastic : ConstitutiveLawKind::j2_viscoplastic;
-    m.hardening_exponent = 13.5;
-    m.reference_plastic_strain = 0.001;
-    m.rate_exponent = 44;
-    m.reference_strain_rate = 1000;
-    m.hourglass_coefficient = 0.05;
+  m.model = find_model(o.model) ? o.model : "pmb";
+  ModelParameters& q = m.parameters;  // the keys of the chosen model (each model reads its own)
+  if (m.model == "correspondence") {
+    const bool j2 = o.law != "hypoelastic";
+    q.set_text("constitutive_law", j2 ? "j2_viscoplastic" : "hypoelastic");
+    q.set_number("hourglass_coefficient", 0.05);
+    q.set_number("hourglass_viscosity", 0);
+    if (j2) {
+      q.set_number("yield_stress", o.yield_stress);
+      q.set_number("hardening_exponent", 13.5);
+      q.set_number("reference_plastic_strain", 0.001);
+      q.set_number("rate_exponent", 44);
+      q.set_number("reference_strain_rate", 1000);
+    }
+  } else {
+    q.set_number("yield_stress", o.yield_stress);
+    q.set_number("hardening_modulus", 1e9);
+    q.set_number("relaxing_fraction", 0.5);
+    q.set_number("relaxation_time", 1e-5);
   }
   // LAMMPS peri/lps weighs bonds by 1/|ξ| (the scale of ω cancels in LPS, so δ/|ξ| is the same model).
-  m.influence = m.model == ModelKind::pmb ? InfluenceKind::constant : InfluenceKind::inverse_distance;
-  m.yield_stress = o.yield_stress;
-  m.hardening_modulus = 1e9;
-  m.relaxing_fraction = 0.5;
-  m.relaxation_time = 1e-5;
+  m.influence = m.model == "pmb" ? InfluenceKind::constant : InfluenceKind::inverse_distance;
   m.density = 7800;
   m.elastic = {K, G, E, nu};
   if (o.critical_stretch > 0) {

@@ -16,7 +16,7 @@
 
 #include <fmt/format.h>
 
-#include "peridot/materials/registry.hpp"
+#include "peridot/materials/models.hpp"
 
 namespace {
 

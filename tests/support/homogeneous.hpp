@@ -20,7 +20,7 @@ class HomogeneousBlock {
  public:
   /// δ = 4.015Δx with partial volumes (interior lattice quadrature within 1 %, lps_patch_test) and a
   /// cube of 11 cells: the centre sits 5.5Δx from every face, beyond δ + ½Δx.
-  static BlockSetup setup(ModelKind model) {
+  static BlockSetup setup(const std::string& model) {
     BlockSetup s;
     s.model = model;
     s.horizon_factor = 4.015;
@@ -37,17 +37,22 @@ class HomogeneousBlock {
     const Vec3 middle = 0.5 * Vec3{s.cells[0] * s.spacing, s.cells[1] * s.spacing, s.cells[2] * s.spacing};
     for (std::size_t i = 0; i < disc.num_points(); ++i)
       if (const double d = norm(disc.x.get(i) - middle); d < best) best = d, centre_ = i;
-    set_time_step(sim_.model().params, 0.0);
+    sim_.model().set_time_step(0.0);
   }
 
   Simulation& sim() { return sim_; }
   std::size_t centre() const { return centre_; }
   const VectorField& displacement() const { return sim_.state().u; }
   const MaterialParams& params() const { return sim_.model().params[0]; }
+  /// The block's model constants (Model::Params).
+  template <class Model>
+  const typename Model::Params& model_params() const {
+    return sim_.model().model_params_of<Model>(0);
+  }
   /// The Δt the history commit integrates over (lps_viscoelastic's ε, β).
   void set_step(double dt) {
     dt_ = dt;
-    set_time_step(sim_.model().params, dt);
+    sim_.model().set_time_step(dt);
   }
 
   /// u = (F − I)x for every point; θ and the return map for it (the history is not committed).
@@ -87,7 +92,13 @@ class HomogeneousBlock {
       const std::uint32_t j = bonds.neighbors[b];
       const auto g = bond_loop::bond_geometry<3>(sim_.discretization().x.data(), state.u.data(), i, j);
       const double omega = influence(p.influence, g.xi, p.horizon);
-      const double t = with_bond_model(p.model, [&](auto m) { return m.force_scalar(p, fields, i, b, g.e, g.xi, omega); });
+      const double t = with_model(p.model, [&](auto m) -> double {
+        using Model = decltype(m);
+        if constexpr (Model::has_bond_kernel)
+          return Model::force_scalar(ctx.model_params_of<Model>(0), fields, i, b, g.e, g.xi, omega);
+        else
+          throw std::logic_error("HomogeneousBlock: the model has no bond kernel");
+      });
       body(b, t, g, bond_loop::neighbor_volume(ctx, i, j, g.xi));
     }
   }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "peridot/deck/model_schema.hpp"
 #include "peridot/deck/problem.hpp"
 
 namespace peridot::testing {
@@ -10,7 +11,7 @@ namespace peridot::testing {
 struct BlockSetup {
   int dimension = 3;
   PlaneKind plane = PlaneKind::none;
-  ModelKind model = ModelKind::lps;
+  std::string model = "lps";  ///< a registered model name
   InfluenceKind influence = InfluenceKind::constant;
   int cells[3] = {10, 10, 10};  ///< lattice points along x, y, z (z ignored in 2D)
   double spacing = 1e-3;        ///< m
@@ -19,9 +20,26 @@ struct BlockSetup {
   double density = 7800;
   double jitter = 0;
   bool partial_volume = false;
-  double yield_stress = 250e6, hardening_modulus = 0;       ///< lps_plastic
-  double relaxing_fraction = 0.5, relaxation_time = 1e-5;   ///< lps_viscoelastic
+  /// The model's own keys (SI); box_problem adds the schema's default of every key not given here.
+  ModelParameters parameters;
 };
+
+/// `given` and the default of every other key of the model (as the deck parser does).
+inline ModelParameters with_defaults(const std::string& model, const ModelParameters& given) {
+  const ModelInfo* info = find_model(model);
+  PERIDOT_REQUIRE(info, "unknown model " + model);
+  ModelParameters all;
+  for (const KeySpec& k : info->keys) {
+    if (const ModelParameters::Entry* e = given.find(k.key)) {
+      if (e->is_text) all.set_text(e->key, e->text);
+      else all.set_number(e->key, e->number);
+    } else if (!k.default_yaml.empty()) {
+      if (k.type == ValueType::choice || k.type == ValueType::text) all.set_text(std::string(k.key), std::string(k.default_yaml));
+      else all.set_number(std::string(k.key), *parse_quantity(k.default_yaml, k.unit).value);
+    }
+  }
+  return all;
+}
 
 /// A box of lattice points [0, n·Δx] with one material, no loads, a handful of steps.
 inline Problem box_problem(const BlockSetup& s) {
@@ -40,16 +58,13 @@ inline Problem box_problem(const BlockSetup& s) {
   m.density = s.density;
   m.influence = s.influence;
   double K = s.bulk_modulus, G = s.shear_modulus;
-  if (s.model == ModelKind::pmb) {
+  if (s.model == "pmb") {
     // Bond-based: ν = 1/4 (3D, plane strain) or 1/3 (plane stress); G follows from K and ν.
     const double nu = p.plane == PlaneKind::stress ? 1.0 / 3.0 : 0.25;
     G = 3 * K * (1 - 2 * nu) / (2 * (1 + nu));
   }
   m.elastic = {K, G, 9 * K * G / (3 * K + G), (3 * K - 2 * G) / (2 * (3 * K + G))};
-  m.yield_stress = s.yield_stress;
-  m.hardening_modulus = s.hardening_modulus;
-  m.relaxing_fraction = s.relaxing_fraction;
-  m.relaxation_time = s.relaxation_time;
+  m.parameters = with_defaults(s.model, s.parameters);
   p.materials.push_back(m);
 
   BodySpec b;

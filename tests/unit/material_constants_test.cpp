@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "peridot/materials/material.hpp"
+#include "peridot/materials/models.hpp"
 #include "support/problems.hpp"
 
 namespace peridot {
@@ -13,7 +13,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-MaterialParams resolve(int dimension, PlaneKind plane, ModelKind model, double fracture_energy,
+ResolvedMaterial resolve(int dimension, PlaneKind plane, std::string model, double fracture_energy,
                        InfluenceKind influence = InfluenceKind::constant) {
   testing::BlockSetup s;
   s.dimension = dimension;
@@ -27,32 +27,36 @@ MaterialParams resolve(int dimension, PlaneKind plane, ModelKind model, double f
 }
 
 TEST(MaterialConstants, PmbMicromodulusAndCriticalStretch3D) {
-  const MaterialParams p = resolve(3, PlaneKind::none, ModelKind::pmb, 42408);
+  const ResolvedMaterial p_all = resolve(3, PlaneKind::none, "pmb", 42408);
+  const MaterialParams& p = p_all.block;
   const double K = p.elastic.bulk_modulus, delta = 3e-3;
-  EXPECT_NEAR(p.micromodulus, 18 * K / (pi * std::pow(delta, 4)), 1e-12 * p.micromodulus);
+  EXPECT_NEAR(std::get<Pmb::Params>(p_all.model).micromodulus, 18 * K / (pi * std::pow(delta, 4)), 1e-12 * std::get<Pmb::Params>(p_all.model).micromodulus);
   EXPECT_NEAR(p.critical_stretch, std::sqrt(5 * 42408 / (9 * K * delta)), 1e-12);
-  EXPECT_DOUBLE_EQ(p.stable_micromodulus, p.micromodulus);
+  EXPECT_DOUBLE_EQ(p.stable_micromodulus, std::get<Pmb::Params>(p_all.model).micromodulus);
 }
 
 TEST(MaterialConstants, PmbMicromodulusAndCriticalStretch2D) {
   for (PlaneKind plane : {PlaneKind::stress, PlaneKind::strain}) {
-    const MaterialParams p = resolve(2, plane, ModelKind::pmb, 3.8);
+    const ResolvedMaterial p_all = resolve(2, plane, "pmb", 3.8);
+  const MaterialParams& p = p_all.block;
     const double E = p.elastic.youngs_modulus, nu = p.elastic.poisson_ratio, delta = 3e-3, h = 1e-3;
     const double K2 = plane == PlaneKind::stress ? E / (2 * (1 - nu)) : E / (2 * (1 - nu - 2 * nu * nu));
-    EXPECT_NEAR(p.micromodulus, 12 * K2 / (pi * h * std::pow(delta, 3)), 1e-12 * p.micromodulus);
+    EXPECT_NEAR(std::get<Pmb::Params>(p_all.model).micromodulus, 12 * K2 / (pi * h * std::pow(delta, 3)), 1e-12 * std::get<Pmb::Params>(p_all.model).micromodulus);
     EXPECT_NEAR(p.critical_stretch, std::sqrt(pi * 3.8 / (3 * K2 * delta)), 1e-12);
   }
 }
 
 TEST(MaterialConstants, LpsCoefficients) {
-  const MaterialParams p3 = resolve(3, PlaneKind::none, ModelKind::lps, 100);
-  EXPECT_DOUBLE_EQ(p3.alpha_volumetric, 3 * p3.elastic.bulk_modulus);
-  EXPECT_DOUBLE_EQ(p3.alpha_deviatoric, 15 * p3.elastic.shear_modulus);
-  const MaterialParams p2 = resolve(2, PlaneKind::stress, ModelKind::lps, 100);
+  const ResolvedMaterial p3_all = resolve(3, PlaneKind::none, "lps", 100);
+  const MaterialParams& p3 = p3_all.block;
+  EXPECT_DOUBLE_EQ(std::get<Lps::Params>(p3_all.model).alpha_volumetric, 3 * p3.elastic.bulk_modulus);
+  EXPECT_DOUBLE_EQ(std::get<Lps::Params>(p3_all.model).alpha_deviatoric, 15 * p3.elastic.shear_modulus);
+  const ResolvedMaterial p2_all = resolve(2, PlaneKind::stress, "lps", 100);
+  const MaterialParams& p2 = p2_all.block;
   const double E = p2.elastic.youngs_modulus, nu = p2.elastic.poisson_ratio;
-  EXPECT_NEAR(p2.alpha_volumetric, 2 * E / (2 * (1 - nu)), 1e-6 * p2.alpha_volumetric);
-  EXPECT_DOUBLE_EQ(p2.alpha_deviatoric, 8 * p2.elastic.shear_modulus);
-  EXPECT_EQ(p2.dilatation_factor, 2);
+  EXPECT_NEAR(std::get<Lps::Params>(p2_all.model).alpha_volumetric, 2 * E / (2 * (1 - nu)), 1e-6 * std::get<Lps::Params>(p2_all.model).alpha_volumetric);
+  EXPECT_DOUBLE_EQ(std::get<Lps::Params>(p2_all.model).alpha_deviatoric, 8 * p2.elastic.shear_modulus);
+  EXPECT_EQ(std::get<Lps::Params>(p2_all.model).dilatation_factor, 2);
 }
 
 TEST(MaterialConstants, InfluenceMomentsMatchQuadrature) {
@@ -71,10 +75,11 @@ TEST(MaterialConstants, InfluenceMomentsMatchQuadrature) {
 
 // With ω = δ/ξ the critical stretch still satisfies G0 = (π c0 s0²/2) ∫ ω ξ⁴ dξ (3D), c0 from K.
 TEST(MaterialConstants, CriticalStretchWithInfluenceFunction) {
-  const MaterialParams p = resolve(3, PlaneKind::none, ModelKind::pmb, 1000, InfluenceKind::inverse_distance);
+  const ResolvedMaterial p_all = resolve(3, PlaneKind::none, "pmb", 1000, InfluenceKind::inverse_distance);
+  const MaterialParams& p = p_all.block;
   const double delta = 3e-3, K = p.elastic.bulk_modulus;
-  EXPECT_NEAR(p.micromodulus, 27 * K / (2 * pi * std::pow(delta, 4)), 1e-12 * p.micromodulus);
-  const double g0 = pi * p.micromodulus * p.critical_stretch * p.critical_stretch / 2 * std::pow(delta, 5) / 4;
+  EXPECT_NEAR(std::get<Pmb::Params>(p_all.model).micromodulus, 27 * K / (2 * pi * std::pow(delta, 4)), 1e-12 * std::get<Pmb::Params>(p_all.model).micromodulus);
+  const double g0 = pi * std::get<Pmb::Params>(p_all.model).micromodulus * p.critical_stretch * p.critical_stretch / 2 * std::pow(delta, 5) / 4;
   EXPECT_NEAR(g0, 1000, 1e-9);
 }
 

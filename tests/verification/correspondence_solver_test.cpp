@@ -17,7 +17,7 @@
 #include "peridot/correspondence/j2_viscoplastic.hpp"
 #include "peridot/correspondence/material_point_driver.hpp"
 #include "peridot/deck/deck.hpp"
-#include "peridot/materials/registry.hpp"
+#include "peridot/materials/models.hpp"
 #include "peridot/solvers/simulation.hpp"
 
 namespace peridot {
@@ -29,7 +29,7 @@ using correspondence::Mat3;
 // The example of the model's page (docs/models/correspondence.md): Foster's 6061-T6
 // (J2Viscoplastic::aluminium_6061_t6) as material 'aluminium', with the default hourglass control.
 const std::string aluminium = [] {
-  const std::string example(model_info(ModelKind::correspondence).doc.example);
+  const std::string example(find_model("correspondence")->doc.example);
   return example.substr(example.find('\n'));  // without the "materials:" line
 }();
 

@@ -25,7 +25,7 @@ constexpr double E = 200e9, nu = 0.3, strain = 1e-3;
 /// A bar along x, centred on the origin (n_x × n × n lattice points), gripped over a horizon at each end,
 /// where the classical solution of uniaxial stress is imposed (u_x = ε x, u_y = −ν ε y, u_z = −ν ε z, so
 /// that the grips' extent does not matter), free elsewhere, relaxed in `load_steps` steps.
-Problem bar_problem(int nx, int n, int load_steps, ModelKind model = ModelKind::lps, double shear_factor = 1) {
+Problem bar_problem(int nx, int n, int load_steps, std::string model = "lps", double shear_factor = 1) {
   BlockSetup s;
   s.model = model;
   s.bulk_modulus = E / (3 * (1 - 2 * nu));
@@ -127,14 +127,14 @@ TEST(DynamicRelaxation, ViscoelasticBarRelaxesInRealTime) {
   // solid (shear modulus G); 20 τ_b later it is the relaxed one, (1 − λ_i) G (same bulk modulus).
   const double tau = 1e-5, lambda = 0.5;
   auto viscoelastic = [&](double end_time, int load_steps) {
-    Problem p = bar_problem(16, 7, load_steps, ModelKind::lps_viscoelastic);
-    p.materials[0].relaxing_fraction = lambda;
-    p.materials[0].relaxation_time = tau;
+    Problem p = bar_problem(16, 7, load_steps, "lps_viscoelastic");
+    p.materials[0].parameters.set_number("relaxing_fraction", lambda);
+    p.materials[0].parameters.set_number("relaxation_time", tau);
     p.solver.ramp = false;  // the stretch is held from the first load step on
     p.solver.end_time = end_time;
     return p;
   };
-  const auto glassy = solve(bar_problem(16, 7, 1)), relaxed = solve(bar_problem(16, 7, 1, ModelKind::lps, 1 - lambda));
+  const auto glassy = solve(bar_problem(16, 7, 1)), relaxed = solve(bar_problem(16, 7, 1, "lps", 1 - lambda));
   const auto early = solve(viscoelastic(1e-4 * tau, 1)), late = solve(viscoelastic(20 * tau, 40));
   const double glassy_vs_relaxed = relative_difference(*glassy, *relaxed);
   EXPECT_GT(glassy_vs_relaxed, 1e-2);  // the two limits are far apart
@@ -148,8 +148,9 @@ TEST(DynamicRelaxation, CorrespondenceBarRelaxesToTheUniaxialSolution) {
   // state is committed. Were the evaluation to change the committed stress, the iterations would pile the
   // increments up. Hypoelastic law with hourglass control (C_HG = 0.05).
   const int nx = 40, n = 11;
-  Problem p = bar_problem(nx, n, 2, ModelKind::correspondence);
-  p.materials[0].hourglass_coefficient = 0.05;
+  Problem p = bar_problem(nx, n, 2, "correspondence");
+  p.materials[0].parameters.set_text("constitutive_law", "hypoelastic");
+  p.materials[0].parameters.set_number("hourglass_coefficient", 0.05);
   p.partial_volume = PartialVolumeKind::none;
   const auto sim = solve(p);
   const auto [axial, lateral] = bar_strains(*sim, nx, n);

@@ -58,7 +58,7 @@ BlockSetup patch_setup(int dimension, PlaneKind plane) {
   BlockSetup s;
   s.dimension = dimension;
   s.plane = plane;
-  s.model = ModelKind::lps;
+  s.model = "lps";
   s.bulk_modulus = 70e9;
   s.shear_modulus = 26e9;
   // The deviatoric energy is a lattice quadrature of a fourth moment of the bond directions. Measured
@@ -141,7 +141,7 @@ TEST(LpsBar, ContractsLaterallyByPoissonRatio) {
   BlockSetup s;
   s.dimension = 2;
   s.plane = PlaneKind::stress;
-  s.model = ModelKind::lps;
+  s.model = "lps";
   const double E = 70e9, nu = 0.33;
   s.bulk_modulus = E / (3 * (1 - 2 * nu));
   s.shear_modulus = E / (2 * (1 + nu));

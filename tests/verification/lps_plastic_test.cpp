@@ -50,15 +50,16 @@ struct FamilyCase {
 class LpsPlasticFamily : public ::testing::TestWithParam<FamilyCase> {};
 
 TEST_P(LpsPlasticFamily, ReturnMapMatchesClosedFormOverLoadUnloadReverse) {
-  testing::BlockSetup s = HomogeneousBlock::setup(ModelKind::lps_plastic);
+  testing::BlockSetup s = HomogeneousBlock::setup("lps_plastic");
   s.influence = GetParam().influence;
-  s.yield_stress = yield_stress;
+  s.parameters.set_number("yield_stress", yield_stress);
   const double E = 9 * s.bulk_modulus * s.shear_modulus / (3 * s.bulk_modulus + s.shear_modulus);
-  s.hardening_modulus = GetParam().hardening_ratio * E;
+  s.parameters.set_number("hardening_modulus", GetParam().hardening_ratio * E);
   HomogeneousBlock block(s);
   const Discretization& disc = block.sim().discretization();
   const BondList& bonds = block.sim().bonds();
   const MaterialParams& p = block.params();
+  const LpsPlastic::Params& plastic = block.model_params<LpsPlastic>();
   const std::size_t c = block.centre();
   const MaterialHistory& history = block.sim().state().history;
 
@@ -79,9 +80,9 @@ TEST_P(LpsPlasticFamily, ReturnMapMatchesClosedFormOverLoadUnloadReverse) {
     M += omega * pattern.back() * pattern.back() * V;
     moment += omega * omega * length * length * V;
   }
-  const double N = std::sqrt(N2), alpha = p.alpha_deviatoric * block.sim().model().inverse_weighted_volume[c];
-  const double k = std::sqrt(p.yield_calibration * moment) * block.sim().model().inverse_weighted_volume[c];
-  const double H = p.hardening_modulus;
+  const double N = std::sqrt(N2), alpha = plastic.alpha_deviatoric * block.sim().model().inverse_weighted_volume[c];
+  const double k = std::sqrt(plastic.yield_calibration * moment) * block.sim().model().inverse_weighted_volume[c];
+  const double H = plastic.hardening_modulus;
   const double E1 = alpha * N, s_y = k * yield_stress, Hs = k * k * H * M / N;
   const double f_y = s_y / E1, f1 = 3 * f_y;
 
@@ -175,12 +176,12 @@ std::vector<UniaxialPoint> drive_uniaxial(HomogeneousBlock& block, const std::ve
 }
 
 TEST(LpsPlasticUniaxial, YieldHardeningUnloadingAndPermanentStrain) {
-  testing::BlockSetup s = HomogeneousBlock::setup(ModelKind::lps_plastic);
-  s.yield_stress = yield_stress;
+  testing::BlockSetup s = HomogeneousBlock::setup("lps_plastic");
+  s.parameters.set_number("yield_stress", yield_stress);
   const double K = s.bulk_modulus, G = s.shear_modulus;
   const double E = 9 * K * G / (3 * K + G), nu = (3 * K - 2 * G) / (2 * (3 * K + G));
-  s.hardening_modulus = 0.2 * E;
-  const double H = s.hardening_modulus, tangent = E * H / (E + H), yield_strain = yield_stress / E;
+  s.parameters.set_number("hardening_modulus", 0.2 * E);
+  const double H = s.parameters.number("hardening_modulus"), tangent = E * H / (E + H), yield_strain = yield_stress / E;
   HomogeneousBlock block(s);
 
   std::vector<double> strains;
@@ -229,8 +230,8 @@ TEST(LpsPlasticUniaxial, YieldHardeningUnloadingAndPermanentStrain) {
 // ---------------------------------------------------------------------------------------------------
 
 TEST(LpsPlasticVolumetric, PureVolumetricStrainNeverYields) {
-  testing::BlockSetup s = HomogeneousBlock::setup(ModelKind::lps_plastic);
-  s.yield_stress = yield_stress;
+  testing::BlockSetup s = HomogeneousBlock::setup("lps_plastic");
+  s.parameters.set_number("yield_stress", yield_stress);
   HomogeneousBlock block(s);
   const MaterialHistory& history = block.sim().state().history;
   const double yield_strain = yield_stress / 200e9;
@@ -259,9 +260,9 @@ struct WorkBalance {
 };
 
 WorkBalance random_history(int steps, double step) {
-  testing::BlockSetup s = HomogeneousBlock::setup(ModelKind::lps_plastic);
-  s.yield_stress = yield_stress;
-  s.hardening_modulus = 20e9;
+  testing::BlockSetup s = HomogeneousBlock::setup("lps_plastic");
+  s.parameters.set_number("yield_stress", yield_stress);
+  s.parameters.set_number("hardening_modulus", 20e9);
   HomogeneousBlock block(s);
   const std::size_t c = block.centre();
   const BondList& bonds = block.sim().bonds();
@@ -392,12 +393,12 @@ std::vector<BarPoint> pull_bar(const testing::BlockSetup& s, double max_strain, 
 // strain after unloading 0.5 % above the classical permanent strain.
 TEST(LpsPlasticBar, QuasiStaticTensionThroughTheSolver) {
   testing::BlockSetup s;
-  s.model = ModelKind::lps_plastic;
+  s.model = "lps_plastic";
   s.cells[0] = 30, s.cells[1] = s.cells[2] = 10;
-  s.yield_stress = yield_stress;
+  s.parameters.set_number("yield_stress", yield_stress);
   const double K = s.bulk_modulus, G = s.shear_modulus, E = 9 * K * G / (3 * K + G);
-  s.hardening_modulus = 0.2 * E;
-  const double H = s.hardening_modulus, tangent = E * H / (E + H), yield_strain = yield_stress / E;
+  s.parameters.set_number("hardening_modulus", 0.2 * E);
+  const double H = s.parameters.number("hardening_modulus"), tangent = E * H / (E + H), yield_strain = yield_stress / E;
   const std::vector<BarPoint> curve = pull_bar(s, 4 * yield_strain, 2 * yield_strain, 3000);
   const std::size_t peak = std::max_element(curve.begin(), curve.end(), [](auto& a, auto& b) { return a.strain < b.strain; }) - curve.begin();
   auto slope = [&](std::size_t a, std::size_t b) { return (curve[b].stress - curve[a].stress) / (curve[b].strain - curve[a].strain); };

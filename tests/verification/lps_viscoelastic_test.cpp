@@ -22,9 +22,9 @@ using testing::HomogeneousBlock;
 constexpr double relaxing_fraction = 0.6, relaxation_time = 1e-5;
 
 testing::BlockSetup viscoelastic_setup() {
-  testing::BlockSetup s = HomogeneousBlock::setup(ModelKind::lps_viscoelastic);
-  s.relaxing_fraction = relaxing_fraction;
-  s.relaxation_time = relaxation_time;
+  testing::BlockSetup s = HomogeneousBlock::setup("lps_viscoelastic");
+  s.parameters.set_number("relaxing_fraction", relaxing_fraction);
+  s.parameters.set_number("relaxation_time", relaxation_time);
   return s;
 }
 
@@ -58,9 +58,9 @@ TEST(LpsViscoelasticRelaxation, HeldShearRelaxesExponentiallyAndDissipatesTheLos
 
   // The stress with the committed back extension (Δt = 0 constants), then back to the run's Δt.
   auto shear_stress = [&]() {
-    set_time_step(sim.model().params, 0.0);
+    sim.model().set_time_step(0.0);
     const double tau = block.stress()[0][1];
-    set_time_step(sim.model().params, dt);
+    sim.model().set_time_step(dt);
     return tau;
   };
   const double initial_stress = shear_stress();

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "peridot/core/error.hpp"
-#include "peridot/materials/registry.hpp"
+#include "peridot/materials/models.hpp"
 #include "peridot/core/deterministic_sum.hpp"
 
 namespace peridot {
@@ -30,11 +30,11 @@ void check_symmetry_walls(const Problem& problem, const Discretization& disc, co
                                                "at t = 0; the bodies must be on its normal's side",
                                                where, disc.input_id[i], problem.bodies[block].name, x.x, x.y, x.z));
       if (gap >= p.horizon) continue;
-      if (p.model != ModelKind::correspondence)
+      if (!is_model<CorrespondenceModel>(p))
         throw InputError(wall.pos, fmt::format("{}: body '{}' ({} model) comes within its horizon of the plane; the "
                                                "symmetry contact is built for correspondence bodies only (use contact: "
                                                "penalty)",
-                                               where, problem.bodies[block].name, model_info(p.model).name));
+                                               where, problem.bodies[block].name, model_name(p.model)));
       if (near[i])
         throw InputError(wall.pos, fmt::format("{}: point {} at ({:g}, {:g}, {:g}) m is within a horizon of two "
                                                "symmetry walls (corners are not mirrored twice)",

@@ -27,6 +27,7 @@
 // β the Taylor–Quinney coefficient. Θ uses T_n (explicit in temperature, as in explicit impact codes),
 // so the return mapping of a step is unchanged apart from the constant factor.
 #include "peridot/correspondence/constitutive.hpp"
+#include "peridot/materials/correspondence_model.hpp"
 
 namespace peridot::correspondence {
 
@@ -39,9 +40,9 @@ struct J2Viscoplastic {
   double reference_plastic_strain = 1;       ///< ε0 (-)
   double reference_plastic_strain_rate = 1;  ///< ε̇0 (1/s)
 
-  /// Adiabatic heating and Johnson–Cook thermal softening (the deck's section, deck/problem.hpp); off when
+  /// Adiabatic heating and Johnson–Cook thermal softening (materials/correspondence_model.hpp); off when
   /// `thermal.enabled` is false. The heating needs the density.
-  ThermalSofteningSpec thermal;
+  ThermalSoftening thermal;
   double density = 0;  ///< ρ (kg/m³)
 
   struct History {

@@ -15,7 +15,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "peridot/deck/map_reader.hpp"
-#include "peridot/materials/registry.hpp"
+#include "peridot/deck/model_schema.hpp"
 
 namespace peridot {
 
@@ -146,7 +146,7 @@ struct Parser {
       MaterialSpec m;
       m.name = name;
       m.pos = pos;
-      m.model = model ? model->kind : ModelKind::pmb;
+      if (model) m.model = std::string(model->name);
       m.density = r["density"].number;
       const std::string& influence = r["influence"].text;
       m.influence = influence == "inverse_distance" ? InfluenceKind::inverse_distance
@@ -154,73 +154,41 @@ struct Parser {
                                                     : InfluenceKind::constant;
       if (model) m.elastic = resolve_elastic(r, *model);
       if (r.given("damage")) m.damage = parse_damage(r["damage"], r.path_of("damage"));
-      m.yield_stress = r.optional_number("yield_stress").value_or(0);
-      m.hardening_modulus = r.optional_number("hardening_modulus").value_or(0);
-      m.relaxing_fraction = r.optional_number("relaxing_fraction").value_or(0);
-      m.relaxation_time = r.optional_number("relaxation_time").value_or(0);
+      if (model) read_model_parameters(r, *model, m.parameters);
       if (model && model->dimension != 0 && model->dimension != p.dimension)
         ctx.error(r["model"].pos, r.path_of("model"),
                   fmt::format("model {} is implemented in {}D only (discretization.dimension: {})", model->name,
                               model->dimension, model->dimension));
-      if (m.model == ModelKind::correspondence) parse_correspondence(r, m);
+      if (model && model->check) model->check(r, m.parameters, ctx);
       p.materials.push_back(std::move(m));
     });
   }
 
-  /// The law and its parameters, and what the correspondence model cannot do yet (docs/models/correspondence.md).
-  void parse_correspondence(const MapReader& r, MaterialSpec& m) {
-    if (r.given("damage"))
-      ctx.error(r["damage"].key_pos, r.path_of("damage"),
-                "the correspondence model has no bond failure yet; remove damage (broken bonds would leave K, F "
-                "and the force state without a failure criterion)");
-    const bool j2 = r["constitutive_law"].text == "j2_viscoplastic";
-    m.constitutive_law = j2 ? ConstitutiveLawKind::j2_viscoplastic : ConstitutiveLawKind::hypoelastic;
-    m.hourglass_coefficient = r["hourglass_coefficient"].number;
-    m.hourglass_viscosity = r["hourglass_viscosity"].number;
-    static constexpr std::string_view j2_keys[] = {"yield_stress", "hardening_exponent", "reference_plastic_strain",
-                                                   "rate_exponent", "reference_strain_rate", "thermal_softening"};
-    if (!j2) {
-      for (std::string_view key : j2_keys)
-        if (r.given(key))
-          ctx.error(r[key].key_pos, r.path_of(key),
-                    fmt::format("{} is a parameter of constitutive_law: j2_viscoplastic, not of hypoelastic", key));
-      return;
-    }
-    if (!r.present("yield_stress"))
-      ctx.error(r["constitutive_law"].pos, r.path(), "constitutive_law: j2_viscoplastic needs yield_stress");
-    // An exponent and its reference value come together: (1 + εp/ε0)^(1/n), (1 + ε̇p/ε̇0)^(1/m).
-    for (auto [exponent, reference] : {std::pair<std::string_view, std::string_view>{"hardening_exponent", "reference_plastic_strain"},
-                                       {"rate_exponent", "reference_strain_rate"}})
-      if (r.present(exponent) != r.present(reference)) {
-        std::string_view given = r.present(exponent) ? exponent : reference;
-        if (r.given(given))
-          ctx.error(r[given].key_pos, r.path_of(given),
-                  fmt::format("{} and {} go together; give both or neither", exponent, reference));
+  /// The model's own keys (ModelInfo::keys), valid values and defaults, into `parameters`; a mapping key
+  /// is read with its section's table (ModelInfo::sections) and stored as "KEY.SUBKEY".
+  void read_model_parameters(const MapReader& r, const ModelInfo& model, ModelParameters& parameters,
+                             const std::vector<KeySpec>* keys = nullptr, const std::string& prefix = "") {
+    for (const KeySpec& k : keys ? *keys : model.keys) {
+      const std::string name = prefix + std::string(k.key);
+      if (k.type == ValueType::mapping) {
+        if (!r.given(k.key)) continue;
+        const std::string path = fmt::format("materials.<name>.{}", k.key);
+        const auto section = std::find_if(model.sections.begin(), model.sections.end(),
+                                          [&](const SectionSpec& s) { return s.path == path; });
+        PERIDOT_REQUIRE(section != model.sections.end(), "model " + std::string(model.name) + " lacks the section " + path);
+        const Value& v = r[k.key];
+        MapReader nested(ctx, v.node, v.key_pos, r.path_of(k.key), section->keys);
+        read_model_parameters(nested, model, parameters, &section->keys, name + ".");
+        continue;
       }
-    m.yield_stress = r.optional_number("yield_stress").value_or(0);
-    m.hardening_exponent = r.optional_number("hardening_exponent").value_or(std::numeric_limits<double>::infinity());
-    m.reference_plastic_strain = r.optional_number("reference_plastic_strain").value_or(1);
-    m.rate_exponent = r.optional_number("rate_exponent").value_or(std::numeric_limits<double>::infinity());
-    m.reference_strain_rate = r.optional_number("reference_strain_rate").value_or(1);
-    if (r.given("thermal_softening"))
-      m.thermal_softening = parse_thermal_softening(r["thermal_softening"], r.path_of("thermal_softening"));
-  }
-
-  ThermalSofteningSpec parse_thermal_softening(const Value& v, const std::string& path) {
-    MapReader r(ctx, v.node, v.key_pos, path, thermal_softening_keys());
-    ThermalSofteningSpec t;
-    t.enabled = true;
-    t.specific_heat = r.optional_number("specific_heat").value_or(0);
-    t.reference_temperature = r.optional_number("reference_temperature").value_or(0);
-    t.melting_temperature = r.optional_number("melting_temperature").value_or(0);
-    t.exponent = r.optional_number("exponent").value_or(1);
-    t.taylor_quinney = r["taylor_quinney_coefficient"].number;
-    if (r.present("reference_temperature") && r.present("melting_temperature") &&
-        !(t.melting_temperature > t.reference_temperature))
-      ctx.error(r["melting_temperature"].pos, r.path_of("melting_temperature"),
-                fmt::format("melting_temperature ({:g} K) must be above reference_temperature ({:g} K)",
-                            t.melting_temperature, t.reference_temperature));
-    return t;
+      if (!r.given(k.key) && k.default_yaml.empty()) continue;  // absent, or invalid (reported)
+      const Value& v = r[k.key];
+      const SourcePos pos = r.given(k.key) ? v.pos : r.owner();
+      if (k.type == ValueType::choice || k.type == ValueType::text) parameters.set_text(name, v.text, pos);
+      else if (k.type == ValueType::integer) parameters.set_number(name, static_cast<double>(v.integer), pos);
+      else if (k.type == ValueType::boolean) parameters.set_number(name, v.boolean ? 1.0 : 0.0, pos);
+      else parameters.set_number(name, v.number, pos);
+    }
   }
 
   DamageSpec parse_damage(const Value& v, const std::string& path) {

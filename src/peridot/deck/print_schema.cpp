@@ -9,7 +9,7 @@
 
 #include "peridot/deck/deck.hpp"
 #include "peridot/deck/schema.hpp"
-#include "peridot/materials/registry.hpp"
+#include "peridot/deck/model_schema.hpp"
 
 namespace peridot {
 
@@ -120,8 +120,8 @@ void print_models(std::ostream& out, bool markdown) {
       out << fmt::format("  {}: {}\n      elastic constants: {}\n      reference: {}\n      page: peridot info --model {}\n",
                          m.name, m.description, elastic_constants_rule(m), m.reference, m.name);
     }
-    if (!m.extra_keys.empty()) print_section(out, fmt::format("materials.<name> with model {}", m.name), "model parameters",
-                                             m.extra_keys, markdown);
+    if (!m.keys.empty()) print_section(out, fmt::format("materials.<name> with model {}", m.name), "model parameters",
+                                             m.keys, markdown);
   }
   out << "\n";
 }

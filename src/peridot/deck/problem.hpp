@@ -15,20 +15,6 @@
 
 namespace peridot {
 
-enum class ModelKind { pmb, lps, lps_plastic, lps_viscoelastic, correspondence };
-/// Adiabatic heating with Johnson–Cook thermal softening of a j2_viscoplastic law (j2_viscoplastic.hpp):
-/// the flow stress is multiplied by 1 − T*^q, T* = (T − T_r)/(T_m − T_r), and T rises by β ΔW_p/(ρ c).
-struct ThermalSofteningSpec {
-  bool enabled = false;
-  double specific_heat = 0;          ///< c (J/(kg K))
-  double reference_temperature = 0;  ///< T_r (K), the initial temperature
-  double melting_temperature = 0;    ///< T_m (K)
-  double exponent = 1;               ///< q (-)
-  double taylor_quinney = 0.9;       ///< β (-)
-};
-
-/// The constitutive law of a correspondence material (correspondence/hypoelastic.hpp, j2_viscoplastic.hpp).
-enum class ConstitutiveLawKind { hypoelastic, j2_viscoplastic };
 enum class InfluenceKind { constant, inverse_distance, gaussian };  ///< ω = 1, δ/ξ, exp(−ξ²/δ²)
 enum class PlaneKind { none, stress, strain };                      ///< none in 3D
 /// Partial volumes: a neighbour cell cut by the horizon counts in proportion (linear ramp, ½ on the
@@ -52,28 +38,43 @@ struct DamageSpec {
   std::optional<double> fracture_energy;   ///< G0 (J/m²); s0 then follows from K, δ (3D/2D formulas)
 };
 
+/// A material model's own parameters (the keys of its ModelInfo, deck/model_schema.hpp), converted to SI:
+/// every valid value the deck gives and every default, in the order of the model's key table. A key of a
+/// nested section is stored as "SECTION.KEY". The model reads them when it resolves its block constants
+/// (materials/NAME.cpp), the resolved deck writes them back in this order.
+class ModelParameters {
+ public:
+  struct Entry {
+    std::string key;
+    SourcePos pos;     ///< where the value is (the owner's position for a default)
+    double number = 0;
+    std::string text;  ///< a choice or text value (then is_text)
+    bool is_text = false;
+  };
+  void set_number(std::string key, double value, SourcePos pos = {});
+  void set_text(std::string key, std::string value, SourcePos pos = {});
+  bool has(std::string_view key) const;
+  /// The number under `key`; a programming error when absent (the schema makes it required or defaulted).
+  double number(std::string_view key) const;
+  double number_or(std::string_view key, double fallback) const;
+  const std::string& text(std::string_view key) const;
+  const Entry* find(std::string_view key) const;
+  const std::vector<Entry>& entries() const { return entries_; }
+
+ private:
+  Entry& slot(std::string key);
+  std::vector<Entry> entries_;
+};
+
 struct MaterialSpec {
   std::string name;
   SourcePos pos;
-  ModelKind model = ModelKind::pmb;
+  std::string model = "pmb";  ///< a name of the model catalogue (deck/model_schema.hpp)
   double density = 0;  ///< ρ (kg/m³)
   ElasticConstants elastic;
   InfluenceKind influence = InfluenceKind::constant;
   DamageSpec damage;
-  // Inelastic parameters (0 for the models that have none; see the model pages).
-  double yield_stress = 0;         ///< σ_y (Pa), lps_plastic
-  double hardening_modulus = 0;    ///< H (Pa), lps_plastic: σ_Y = σ_y + H ε̄p
-  double relaxing_fraction = 0;    ///< λ_i (-), lps_viscoelastic: share of the deviatoric stiffness that relaxes
-  double relaxation_time = 0;      ///< τ_b (s), lps_viscoelastic
-  // correspondence (Foster, Silling & Chen 2010): the law, J2 parameters (yield_stress is Y) and hourglass control.
-  ConstitutiveLawKind constitutive_law = ConstitutiveLawKind::hypoelastic;
-  double hardening_exponent = std::numeric_limits<double>::infinity();  ///< n (-); ∞ = no strain hardening
-  double reference_plastic_strain = 1;                                 ///< ε0 (-)
-  double rate_exponent = std::numeric_limits<double>::infinity();       ///< m (-); ∞ = rate independent
-  double reference_strain_rate = 1;                                    ///< ε̇0 (1/s)
-  ThermalSofteningSpec thermal_softening;                              ///< j2_viscoplastic only
-  double hourglass_coefficient = 0;                                    ///< C_HG (-)
-  double hourglass_viscosity = 0;                                      ///< C_HV (-)
+  ModelParameters parameters;  ///< the model's own keys
 };
 
 /// Where a body's points come from: a shape filled on the lattice, or a text point file

@@ -6,7 +6,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include "peridot/deck/deck.hpp"
-#include "peridot/materials/registry.hpp"
 
 namespace peridot {
 
@@ -94,55 +93,30 @@ void emit_discretization(YAML::Emitter& out, const Problem& p) {
   out << YAML::EndMap;
 }
 
-/// The keys a model adds to the common ones (registry.cpp), so that the resolved deck runs the same model.
+/// The model's own parameters (MaterialSpec::parameters, in its key table's order), so that the resolved
+/// deck runs the same model; "SECTION.KEY" entries go into a nested mapping.
 void emit_model_parameters(YAML::Emitter& out, const MaterialSpec& m) {
-  auto key = [&](const char* name, double value) { out << YAML::Key << name << YAML::Value << number(value); };
-  switch (m.model) {
-    case ModelKind::pmb:
-    case ModelKind::lps: return;
-    case ModelKind::lps_plastic:
-      key("yield_stress", m.yield_stress);
-      key("hardening_modulus", m.hardening_modulus);
-      return;
-    case ModelKind::lps_viscoelastic:
-      key("relaxing_fraction", m.relaxing_fraction);
-      key("relaxation_time", m.relaxation_time);
-      return;
-    case ModelKind::correspondence: {
-      const bool j2 = m.constitutive_law == ConstitutiveLawKind::j2_viscoplastic;
-      out << YAML::Key << "constitutive_law" << YAML::Value << (j2 ? "j2_viscoplastic" : "hypoelastic");
-      key("hourglass_coefficient", m.hourglass_coefficient);
-      key("hourglass_viscosity", m.hourglass_viscosity);
-      if (!j2) return;
-      key("yield_stress", m.yield_stress);
-      if (std::isfinite(m.hardening_exponent)) {
-        key("hardening_exponent", m.hardening_exponent);
-        key("reference_plastic_strain", m.reference_plastic_strain);
-      }
-      if (std::isfinite(m.rate_exponent)) {
-        key("rate_exponent", m.rate_exponent);
-        key("reference_strain_rate", m.reference_strain_rate);
-      }
-      if (m.thermal_softening.enabled) {
-        const ThermalSofteningSpec& t = m.thermal_softening;
-        out << YAML::Key << "thermal_softening" << YAML::Value << YAML::BeginMap;
-        key("specific_heat", t.specific_heat);
-        key("reference_temperature", t.reference_temperature);
-        key("melting_temperature", t.melting_temperature);
-        key("exponent", t.exponent);
-        key("taylor_quinney_coefficient", t.taylor_quinney);
-        out << YAML::EndMap;
-      }
-      return;
+  std::string open_section;
+  for (const ModelParameters::Entry& e : m.parameters.entries()) {
+    const std::size_t dot = e.key.find('.');
+    const std::string section = dot == std::string::npos ? "" : e.key.substr(0, dot);
+    if (section != open_section) {
+      if (!open_section.empty()) out << YAML::EndMap;
+      if (!section.empty()) out << YAML::Key << section << YAML::Value << YAML::BeginMap;
+      open_section = section;
     }
+    out << YAML::Key << (dot == std::string::npos ? e.key : e.key.substr(dot + 1)) << YAML::Value;
+    if (e.is_text) out << e.text;
+    else out << number(e.number);
   }
+  if (!open_section.empty()) out << YAML::EndMap;
 }
 
 void emit_materials(YAML::Emitter& out, const Problem& p) {
   out << YAML::Key << "materials" << YAML::Value << YAML::BeginMap;
   for (const MaterialSpec& m : p.materials) {
     out << YAML::Key << m.name << YAML::Value << YAML::BeginMap;
-    out << YAML::Key << "model" << YAML::Value << std::string(model_info(m.model).name);
+    out << YAML::Key << "model" << YAML::Value << m.model;
     out << YAML::Key << "density" << YAML::Value << number(m.density);
     out << YAML::Key << "bulk_modulus" << YAML::Value << number(m.elastic.bulk_modulus);
     out << YAML::Key << "shear_modulus" << YAML::Value << number(m.elastic.shear_modulus);

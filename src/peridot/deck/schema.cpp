@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "peridot/core/error.hpp"
-#include "peridot/materials/registry.hpp"
+#include "peridot/deck/model_schema.hpp"
 #include "peridot/state/point_fields.hpp"
 
 namespace peridot {
@@ -224,9 +224,10 @@ std::vector<SectionSpec> make_sections() {
                  .choices = {"none", "extended", "horizon"}}}});
   s.push_back({"materials.<name>", "a material: a model from the registry and its parameters", common_material_keys()});
   s.push_back({"materials.<name>.damage", "bond breaking; omit for no damage", damage_keys()});
-  s.push_back({"materials.<name>.thermal_softening",
-               "adiabatic heating and Johnson–Cook thermal softening of constitutive_law: j2_viscoplastic; omit for none",
-               thermal_softening_keys()});
+  for (const ModelInfo& model : material_models())  // the models' nested sections, each path once
+    for (const SectionSpec& section : model.sections)
+      if (std::none_of(s.begin(), s.end(), [&](const SectionSpec& known) { return known.path == section.path; }))
+        s.push_back(section);
   s.push_back({"bodies.<name>", "a body: points filling a shape on the lattice, or read from a file",
                {{.key = "material", .type = VT::text, .description = "name of a material", .required = true},
                 {.key = "shape", .type = VT::mapping, .description = "a shape (see shape)", .required = true, .one_of = "source"},

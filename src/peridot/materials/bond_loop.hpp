@@ -5,7 +5,6 @@
 #include <cmath>
 #include <type_traits>
 
-#include "peridot/materials/dispatch.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
 #include "peridot/materials/model_context.hpp"
 
@@ -58,9 +57,9 @@ inline double neighbor_volume(const ModelContext& ctx, std::size_t i, std::size_
   return v * partial_volume_factor(xi, horizon, ctx.partial_volume_radius);
 }
 
-/// Runs body(Dim, Model, params, range) for every block of a bond-kernel model (pmb, lps, …), with the
-/// dimension and the block's model as compile-time types. Correspondence blocks are skipped: they have no
-/// bond kernel (solvers/correspondence_blocks.hpp computes their force).
+/// Runs body(Dim, Model, params, model_params, range) for every block of a model with a bond kernel, with
+/// the dimension and the block's model as compile-time types and model_params its Model::Params. Blocks of
+/// a model without one (correspondence: solvers/correspondence_blocks.hpp computes their force) are skipped.
 template <class Body>
 void for_each_block(const ModelContext& ctx, Body&& body) {
   for (std::size_t b = 0; b < ctx.ranges.size(); ++b) {
@@ -69,7 +68,8 @@ void for_each_block(const ModelContext& ctx, Body&& body) {
     if (range.begin == range.end) continue;
     with_dimension(ctx.disc->dimension, [&](auto dim) {
       with_model(p.model, [&](auto model) {
-        if constexpr (!std::is_same_v<decltype(model), CorrespondenceTag>) body(dim, model, p, range);
+        using Model = decltype(model);
+        if constexpr (Model::has_bond_kernel) body(dim, model, p, ctx.model_params_of<Model>(b), range);
       });
     });
   }

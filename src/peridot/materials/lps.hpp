@@ -10,35 +10,46 @@
 // One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v, α_d) = (3, 3K, 15G) in 3D
 // and (2, 2K′, 8G) in 2D; W = α_v θ²/(2n) + (α_d/2m) Σ ω (e − θξ/n)² V. Since Σ ω ξ (e − θξ/n) V = 0,
 // t = ∂W/∂e exactly.
-#include <array>
 #include <cstdint>
+#include <string_view>
 
-#include "peridot/materials/material.hpp"
-#include "peridot/state/fields.hpp"
+#include "peridot/deck/model_schema.hpp"
+#include "peridot/materials/model_base.hpp"
 
 namespace peridot {
 
-struct Lps {
+/// The constants of the LPS force state, shared by the models built on it (lps_plastic, lps_viscoelastic):
+/// t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)], θ = (n/m) Σ ω ξ e V.
+struct LpsConstants {
+  double alpha_volumetric = 0;
+  double alpha_deviatoric = 0;
+  double dilatation_factor = 3;               ///< n: 3 in 3D, 2 in 2D
+  double inverse_dilatation_factor = 1.0 / 3;  ///< 1/n: the bond loops multiply, never divide
+};
+/// (n, α_v, α_d) = (3, 3K, 15G) in 3D and (2, 2K′, 8G) in 2D.
+LpsConstants lps_constants(const ElasticConstants& elastic, const Problem& problem);
+
+struct Lps : ModelBase {
+  static constexpr std::string_view name = "lps";
+  static ModelInfo info();
   static constexpr bool uses_dilatation = true;
-  static constexpr int bond_history_arrays = 0;
-  /// Per-point scratch of this model that a partner's force reads (exchanged to ghosts): none.
-  static constexpr std::array<std::vector<double> MaterialHistory::*, 0> partner_point_scratch{};
-  /// The extension a bond adds to the dilatation sum.
-  static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
+
+  struct Params : LpsConstants {};
+  static Params resolve(const MaterialSpec& spec, const Problem& problem, MaterialParams& block);
 
   /// 1/m is precomputed per point: a kernel multiplies, never divides, per bond.
-  static double force_scalar(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
+  static double force_scalar(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
                              double e, double xi, double omega) {
     const double theta = s.theta[i];
     return omega * s.inverse_m[i] *
            (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - theta * xi * p.inverse_dilatation_factor));
   }
-  static double bond_energy(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
+  static double bond_energy(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
                             double e, double xi, double omega) {
     const double ed = e - s.theta[i] * xi * p.inverse_dilatation_factor;
     return 0.5 * p.alpha_deviatoric * s.inverse_m[i] * omega * ed * ed;
   }
-  static double point_energy(const MaterialParams& p, const KernelFields& s, std::size_t i) {
+  static double point_energy(const Params& p, const KernelFields& s, std::size_t i) {
     return p.alpha_volumetric * s.theta[i] * s.theta[i] / (2 * p.dilatation_factor);
   }
 };

@@ -28,7 +28,8 @@
 // homogeneous deformation gives the classical ε̄p. Backward Euler (r uses σ_Y at n+1) is linear in Δε̄p:
 //   (P5) Δε̄p = g(1 − kσ_Y,n/‖t^d_tr‖) / (1 + gkH/‖t^d_tr‖),  g = kS/(α‖t^d_tr‖);
 //        σ_Y,n+1 = σ_Y,n + HΔε̄p,  r = kσ_Y,n+1/‖t^d_tr‖.
-// History: MaterialHistory::bond[0] = e^dp per bond; plastic_strain = ε̄p and dissipation = W_p per point.
+// History: MaterialHistory::bond[0] = e^dp per bond; plastic_strain = ε̄p and dissipation = W_p per point;
+// the point arrays of the step (r, Δε̄p, q, ρ) and the constant k: see the struct.
 // Stored (free) energy: W = α_v θ²/(2n) + (α_d/2m) Σ ω (e^d − e^dp)² V.
 //   (P6) t = ∂W/∂e needs the term −(α_d/m) q ω ξ, since ∂θ/∂e couples every bond. With a full family q = 0:
 //        Σ ω ξ e^d V = 0 by the definition of θ, and Σ ω ξ e^dp V = 0 is kept exactly by (P4), since
@@ -44,56 +45,73 @@
 //        of the survivors, so that their elastic state is continuous and breaking only releases energy.
 #include <array>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
-#include "peridot/geometry/discretize.hpp"
-#include "peridot/materials/material.hpp"
-#include "peridot/state/fields.hpp"
+#include "peridot/deck/model_schema.hpp"
+#include "peridot/materials/lps.hpp"
+#include "peridot/materials/model_base.hpp"
 
 namespace peridot {
 
-struct ModelContext;
-
-struct LpsPlastic {
+struct LpsPlastic : ModelBase {
+  static constexpr std::string_view name = "lps_plastic";
+  static ModelInfo info();
   static constexpr bool uses_dilatation = true;
-  static constexpr int bond_history_arrays = 1;
+  static constexpr int bond_history_arrays = 1;  ///< bond[0] = e^dp
+  /// The step's scratch of the return map, per point (MaterialHistory::point[k]).
+  enum PointArrayIndex { yield_scale, plastic_strain_increment, deviatoric_moment, released_extension };
+  static constexpr std::array<PointArray, 4> point_arrays = {{
+      {"yield_scale", 1.0},               ///< r of this step's return map: t^d = r t^d_trial, r ∈ (0, 1]
+      {"plastic_strain_increment", 0.0},  ///< Δε̄p of this step
+      {"deviatoric_moment", 0.0},         ///< q = Σ ω ξ (e^d − e^dp) V / m over the intact bonds
+      {"released_extension", 0.0},        ///< ρ: what θ lost to the bonds that broke in this step (P8)
+  }};
   /// What the force of a partner reads of a point's return map (P8, force_scalar): exchanged to ghosts
   /// after prepare.
-  static constexpr std::array<std::vector<double> MaterialHistory::*, 3> partner_point_scratch = {
-      &MaterialHistory::released_extension, &MaterialHistory::yield_scale, &MaterialHistory::deviatoric_moment};
+  static constexpr std::array<int, 3> partner_point_arrays = {released_extension, yield_scale, deviatoric_moment};
+  static constexpr int released_extension_array = released_extension;
+  static constexpr int point_constant_arrays = 1;  ///< k of (C), ModelContext::point_constants[0]
+
+  struct Params : LpsConstants {
+    double yield_stress = 0;       ///< σ_y (Pa)
+    double hardening_modulus = 0;  ///< H (Pa): σ_Y = σ_y + H ε̄p
+    double yield_calibration = 0;  ///< c of (C1)–(C3)
+  };
+  static Params resolve(const MaterialSpec& spec, const Problem& problem, MaterialParams& block);
 
   /// (P7) θ measures the elastic volume change: e − e^dp (equal to e's sum on a full family).
-  static double dilatation_extension(const KernelFields& s, std::uint64_t b, double e) { return e - s.bond0[b]; }
+  static double dilatation_extension(const KernelFields& s, std::uint64_t b, double e) { return e - s.bond[0][b]; }
 
-  static double force_scalar(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
+  static double force_scalar(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                              double e, double xi, double omega) {
     const double theta = s.theta[i];
     const double ed = e - theta * xi * p.inverse_dilatation_factor;
-    const double plastic = s.bond0[b] + s.released_extension[i] * xi;  // (P8)
+    const double plastic = s.bond[0][b] + s.point[released_extension][i] * xi;  // (P8)
     return omega * s.inverse_m[i] *
            (p.alpha_volumetric * theta * xi +
-            p.alpha_deviatoric * (s.yield_scale[i] * (ed - plastic) - s.deviatoric_moment[i] * xi));
+            p.alpha_deviatoric * (s.point[yield_scale][i] * (ed - plastic) - s.point[deviatoric_moment][i] * xi));
   }
-  static double bond_energy(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
+  static double bond_energy(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                             double e, double xi, double omega) {
-    const double plastic = s.bond0[b] + s.released_extension[i] * xi;
+    const double plastic = s.bond[0][b] + s.point[released_extension][i] * xi;
     const double elastic = e - s.theta[i] * xi * p.inverse_dilatation_factor - plastic;
     return 0.5 * p.alpha_deviatoric * s.inverse_m[i] * omega * elastic * elastic;
   }
-  static double point_energy(const MaterialParams& p, const KernelFields& s, std::size_t i) {
+  static double point_energy(const Params& p, const KernelFields& s, std::size_t i) {
     return p.alpha_volumetric * s.theta[i] * s.theta[i] / (2 * p.dilatation_factor);
   }
 
-  /// k of (C) for every point of the block, into ctx.yield_norm_factor (sized by the caller); needs
-  /// ctx.inverse_weighted_volume. Computed once: the sums run over the reference family, like m.
-  static void calibrate(ModelContext& ctx, const MaterialParams& p, BlockRange range);
+  /// k of (C) for every point of the block, into ctx.point_constants[0]; needs ctx.inverse_weighted_volume.
+  /// Computed once: the sums run over the reference family, like m.
+  static void calibrate(ModelContext& ctx, const MaterialParams& block, const Params& p, BlockRange range);
   /// The return map of every point of the block for the current u and θ: yield_scale r, Δε̄p and q (P3–P6).
   /// Reads the history, writes only this step's scratch, so it may run any number of times.
   static void prepare(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                      MaterialHistory& history, const MaterialParams& p, BlockRange range);
+                      MaterialHistory& history, const MaterialParams& block, const Params& p, BlockRange range);
   /// Makes the step final: e^dp, ε̄p and W_p advance with the scratch of prepare, which is reset.
   static void commit(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                     MaterialHistory& history, const MaterialParams& p, BlockRange range, double dt);
+                     MaterialHistory& history, const MaterialParams& block, const Params& p, BlockRange range, double dt);
 };
 
 /// The constant c of (C1)–(C3): k² = c Σ ω² ξ² V / m².

@@ -15,31 +15,38 @@
 // λ_i = 0 is the elastic LPS; λ_i = 1 relaxes the shear completely (a nonlocal Maxwell fluid in shear).
 // History: MaterialHistory::bond[0] = e^b and bond[1] = e^d of the last completed step, per bond;
 // dissipation = D per point. Instantaneous (glassy) response α_d, relaxed (equilibrium) (1 − λ_i) α_d.
-#include <array>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
-#include "peridot/geometry/discretize.hpp"
-#include "peridot/materials/material.hpp"
-#include "peridot/state/fields.hpp"
+#include "peridot/deck/model_schema.hpp"
+#include "peridot/materials/lps.hpp"
+#include "peridot/materials/model_base.hpp"
 
 namespace peridot {
 
-struct ModelContext;
-
-struct LpsViscoelastic {
+struct LpsViscoelastic : ModelBase {
+  static constexpr std::string_view name = "lps_viscoelastic";
+  static ModelInfo info();
   static constexpr bool uses_dilatation = true;
-  static constexpr int bond_history_arrays = 2;
-  /// Per-point scratch of this model that a partner's force reads (exchanged to ghosts): none.
-  static constexpr std::array<std::vector<double> MaterialHistory::*, 0> partner_point_scratch{};
-  /// The extension a bond adds to the dilatation sum.
-  static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
+  static constexpr int bond_history_arrays = 2;  ///< bond[0] = e^b, bond[1] = e^d of the last step
+
+  struct Params : LpsConstants {
+    double relaxing_fraction = 0;  ///< λ_i (-)
+    double relaxation_time = 0;    ///< τ_b (s)
+    /// For the current Δt (set_time_step): ε = exp(−Δt/τ_b) and β = 1 − (τ_b/Δt)(1 − ε); Δt = 0 gives
+    /// ε = 1, β = 0: no time passes.
+    double viscous_decay = 1;
+    double viscous_ramp = 0;
+  };
+  static Params resolve(const MaterialSpec& spec, const Problem& problem, MaterialParams& block);
+  static void set_time_step(Params& p, double dt);
 
   /// e^b at the end of the step being computed (V3): a function of this step's e^d.
-  static double back_extension(const MaterialParams& p, const KernelFields& s, std::uint64_t b, double ed) {
-    return p.viscous_decay * s.bond0[b] + (1 - p.viscous_decay) * s.bond1[b] + p.viscous_ramp * (ed - s.bond1[b]);
+  static double back_extension(const Params& p, const KernelFields& s, std::uint64_t b, double ed) {
+    return p.viscous_decay * s.bond[0][b] + (1 - p.viscous_decay) * s.bond[1][b] + p.viscous_ramp * (ed - s.bond[1][b]);
   }
-  static double force_scalar(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
+  static double force_scalar(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                              double e, double xi, double omega) {
     const double theta = s.theta[i];
     const double ed = e - theta * xi * p.inverse_dilatation_factor;
@@ -47,23 +54,20 @@ struct LpsViscoelastic {
            (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (ed - p.relaxing_fraction * back_extension(p, s, b, ed)));
   }
   /// (V5) with the committed e^b: call after commit (or with Δt = 0, when the force uses that e^b too).
-  static double bond_energy(const MaterialParams& p, const KernelFields& s, std::size_t i, std::uint64_t b,
+  static double bond_energy(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                             double e, double xi, double omega) {
     const double ed = e - s.theta[i] * xi * p.inverse_dilatation_factor;
-    const double z = ed - s.bond0[b];
+    const double z = ed - s.bond[0][b];
     return 0.5 * p.alpha_deviatoric * s.inverse_m[i] * omega *
            ((1 - p.relaxing_fraction) * ed * ed + p.relaxing_fraction * z * z);
   }
-  static double point_energy(const MaterialParams& p, const KernelFields& s, std::size_t i) {
+  static double point_energy(const Params& p, const KernelFields& s, std::size_t i) {
     return p.alpha_volumetric * s.theta[i] * s.theta[i] / (2 * p.dilatation_factor);
   }
 
-  /// Nothing to solve before the force: (V3) is explicit in this step's e^d.
-  static void prepare(const ModelContext&, const VectorField&, const std::vector<double>&, MaterialHistory&,
-                      const MaterialParams&, BlockRange) {}
   /// Makes the step final: e^b and e^d advance (V3), the dissipation (V4) accumulates. Δt as in set_time_step.
   static void commit(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                     MaterialHistory& history, const MaterialParams& p, BlockRange range, double dt);
+                     MaterialHistory& history, const MaterialParams& block, const Params& p, BlockRange range, double dt);
 };
 
 }  // namespace peridot

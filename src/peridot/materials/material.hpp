@@ -1,9 +1,10 @@
 #pragma once
-// Resolved per-block material parameters and the influence function. The kernels (pmb.hpp, lps.hpp)
-// are tiny functors that say what a bond force and a bond energy are; the bond loops that call them
-// live in solvers/internal_force.cpp.
+// What every block's material has whatever its model, what a kernel may read, and the influence function.
+// The models (materials/NAME.{hpp,cpp}, listed in materials/models.hpp) say what a bond force and a bond
+// energy are; the bond loops that call them live in solvers/internal_force.cpp.
 #include <cmath>
 #include <limits>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -11,70 +12,53 @@
 
 namespace peridot {
 
-/// Everything a kernel needs about one block, in SI units, computed once at set-up.
+/// What every block has, whatever its model, in SI units, computed once at set-up. The model's own
+/// constants are its Params (materials/NAME.hpp), held beside these in ModelContext::model_params.
 struct MaterialParams {
-  ModelKind model = ModelKind::pmb;
+  int model = 0;  ///< index of the block's model in MaterialModels (materials/models.hpp)
   InfluenceKind influence = InfluenceKind::constant;
   int dimension = 3;
   double density = 0;  ///< ρ (kg/m³)
   double horizon = 0;  ///< δ (m)
   ElasticConstants elastic;
-  /// PMB micromodulus c0 (N/m⁶ in 3D): bond micromodulus c(ξ) = c0 ω(ξ).
-  double micromodulus = 0;
-  /// LPS: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)], θ = (n/m) Σ ω ξ e V, n = dilatation_factor (3 or 2).
-  double alpha_volumetric = 0;
-  double alpha_deviatoric = 0;
-  double dilatation_factor = 3;
-  double inverse_dilatation_factor = 1.0 / 3;  ///< 1/n: the bond loops multiply, never divide
   /// Bond fails when its stretch exceeds this; +∞ without damage.
   double critical_stretch = std::numeric_limits<double>::infinity();
-  /// lps_plastic (Mitchell): a point yields when ‖t^d‖ > k σ_Y, σ_Y = σ_y + H ε̄p, with
-  /// k² = c Σ ω² ξ² V / m² and c the calibration constant (lps_plastic.hpp).
-  double yield_stress = 0;
-  double hardening_modulus = 0;
-  double yield_calibration = 0;
-  /// lps_viscoelastic: λ_i, τ_b and, for the current Δt, ε = exp(−Δt/τ_b) and β = 1 − (τ_b/Δt)(1 − ε)
-  /// (set_time_step; Δt = 0 gives ε = 1, β = 0: no time passes).
-  double relaxing_fraction = 0;
-  double relaxation_time = 0;
-  double viscous_decay = 1;
-  double viscous_ramp = 0;
-  /// correspondence: the law and its J2 parameters (as in MaterialSpec), and the hourglass coefficient C_HG.
-  ConstitutiveLawKind constitutive_law = ConstitutiveLawKind::hypoelastic;
-  double hardening_exponent = std::numeric_limits<double>::infinity();
-  double reference_plastic_strain = 1;
-  double rate_exponent = std::numeric_limits<double>::infinity();
-  double reference_strain_rate = 1;
-  ThermalSofteningSpec thermal_softening;
-  double hourglass_coefficient = 0;
-  double hourglass_viscosity = 0;  ///< C_HV (-), viscous hourglass damping
   /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
-  /// the Silling–Askari stable time step estimate for every model.
+  /// the Silling–Askari stable time step estimate and the relaxation's fictitious density; a model may
+  /// raise it in its resolve (correspondence: the P-wave modulus and the hourglass springs).
   double stable_micromodulus = 0;
-  /// Bond dashpot of the same sums (N s/m⁶): the correspondence model's hourglass damping c_hv, 0 for every
-  /// other model. It shortens the stable time step (stable_time_step in solvers/internal_force.hpp).
+  /// Bond dashpot of the same sums (N s/m⁶), 0 unless the model has one (correspondence hourglass
+  /// damping). It shortens the stable time step (stable_time_step in solvers/internal_force.hpp).
   double stable_damping = 0;
 };
 
+/// Most per-point and per-bond arrays a model may declare (static_assert in materials/models.hpp).
+inline constexpr int max_point_arrays = 8;
+inline constexpr int max_bond_arrays = 4;
+
 /// What a kernel may read besides its bond: per-point fields indexed by the point, per-bond history by
-/// the bond of that point's family (the partner's bond through BondList::reverse). Pointers the models
-/// of a problem do not need are null.
+/// the bond of that point's family (the partner's bond through BondList::reverse). `point[k]` and
+/// `bond[k]` are the arrays of MaterialHistory, whose meaning the point's own model declares
+/// (point_arrays, bond_history_arrays); null where no model of the problem has them.
 struct KernelFields {
   const double* theta = nullptr;        ///< θ
   const double* inverse_m = nullptr;    ///< 1/m
-  const double* yield_scale = nullptr;  ///< r of this step's return map (lps_plastic)
-  const double* deviatoric_moment = nullptr;  ///< q of this step (lps_plastic)
-  const double* released_extension = nullptr; ///< ρ of this step: what θ lost to bonds broken now (lps_plastic)
-  const double* bond0 = nullptr;        ///< MaterialHistory::bond[0]
-  const double* bond1 = nullptr;        ///< MaterialHistory::bond[1]
+  const double* point[max_point_arrays] = {};
+  const double* bond[max_bond_arrays] = {};
 };
 
-/// Sets the Δt-dependent constants of every block (lps_viscoelastic's ε and β).
-void set_time_step(std::vector<MaterialParams>& params, double dt);
+/// A per-point array a model declares: its name (for messages and restart) and its value before the first
+/// step.
+struct PointArray {
+  std::string_view name;
+  double initial = 0;
+};
 
-/// Builds the block parameters from the deck. Throws InputError when the fracture energy cannot give a
-/// critical stretch (non-positive result).
-MaterialParams resolve_material(const MaterialSpec& spec, double horizon, const Problem& problem);
+/// The PMB micromodulus c0 of the same response to isotropic strain (materials/pmb.hpp (4), (5)).
+double bond_based_micromodulus(const ElasticConstants& c, double horizon, InfluenceKind influence, const Problem& problem);
+/// The critical stretch s0 of a fracture energy G0 (J/m²): docs/models/pmb.md, damage (D1), (D2).
+double critical_stretch_from_energy(double fracture_energy, const MaterialSpec& spec, double horizon,
+                                    const Problem& problem);
 
 /// The 2D bulk modulus K′ = λ′ + G of the in-plane problem: plane strain K + G/3, plane stress
 /// 9KG/(3K + 4G) = E/(2(1 − ν)). (docs/algorithms.md §3)

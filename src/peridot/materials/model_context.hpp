@@ -7,6 +7,7 @@
 
 #include "peridot/geometry/discretize.hpp"
 #include "peridot/materials/material.hpp"
+#include "peridot/materials/models.hpp"
 #include "peridot/state/fields.hpp"
 
 namespace peridot {
@@ -15,7 +16,8 @@ namespace peridot {
 struct ModelContext {
   const Discretization* disc = nullptr;
   BondList* bonds = nullptr;
-  std::vector<MaterialParams> params;  ///< per block
+  std::vector<MaterialParams> params;     ///< per block: what every model has
+  std::vector<ModelParams> model_params;  ///< per block: its model's own constants (Params)
   std::vector<BlockRange> ranges;      ///< per block
   double partial_volume_radius = 0;    ///< 0: no partial-volume correction
   std::vector<std::uint8_t> no_fail;   ///< per point: bonds touching it never break (empty = none)
@@ -25,9 +27,9 @@ struct ModelContext {
   /// its force in that step (checked in the force pass, after the force) instead of failing before any
   /// force uses it. With it, Peridot and LAMMPS break the same bonds (bench/README.md).
   bool bond_failure_after_force = false;
-  /// lps_plastic: k = √(2ψ0)/σ_Y of every point of its blocks, from its reference family
-  /// (materials/lps_plastic.hpp (C)); empty when no block is lps_plastic.
-  std::vector<double> yield_norm_factor;
+  /// Per-point constants the models calibrate once from the reference family (point_constant_arrays,
+  /// each model's meaning; lps_plastic: k of (C)); as many arrays as the most any present model declares.
+  std::vector<std::vector<double>> point_constants;
   /// Per block: the volume every point of it has, owned and ghost (lattice blocks), or 0 when they
   /// differ; set by calibrate_models. The AVX-512 PMB loop then broadcasts V_j instead of gathering it
   /// (the same value, so the same bits). Empty: every loop gathers.
@@ -37,13 +39,28 @@ struct ModelContext {
   /// (find_same_block_run: two dependent loads per point, usually cache misses). Empty: look them up.
   std::vector<std::uint8_t> family_in_block;
 
+  /// Adds a block (in block order).
+  void add_block(ResolvedMaterial material);
+  /// The Params of block b, whose model is Model.
+  template <class Model>
+  const typename Model::Params& model_params_of(std::size_t b) const {
+    return params_of<Model>(model_params[b]);
+  }
+
   bool any_dilatation() const;
   bool any_damage() const;
   /// The most per-bond history arrays any block's model needs (0: no inelastic model).
   int bond_history_arrays() const;
-  /// The per-point scratch arrays the present models declare that a partner's force reads
-  /// (partner_point_scratch of each model), each once, in the order the models declare them.
-  std::vector<std::vector<double> MaterialHistory::*> partner_point_scratch() const;
+  /// The most per-point arrays any block's model declares (MaterialHistory::point).
+  int point_arrays() const;
+  /// Sizes the history's point arrays and sets them to the start value each point's model declares.
+  void initialize_point_arrays(MaterialHistory& history) const;
+  /// The point arrays the present models declare that a partner's force reads, each once.
+  std::vector<int> partner_point_arrays() const;
+  /// The point arrays the present models fill with what θ lost to the bonds breaking now.
+  std::vector<int> released_extension_arrays() const;
+  /// Sets the Δt-dependent constants of every block's model (lps_viscoelastic's ε and β).
+  void set_time_step(double dt);
 };
 
 }  // namespace peridot

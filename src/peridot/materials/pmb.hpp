@@ -6,33 +6,35 @@
 // strain gives the classical energy density (3D: W = 9Ks²/2 → c0 = 9K / (2π ∫₀^δ ω ξ³ dξ), which is
 // 18K/(πδ⁴) for ω = 1; 2D, thickness h: W = 2K′s² → c0 = 4K′ / (πh ∫₀^δ ω ξ² dξ), 12K′/(πhδ³) for ω = 1).
 // Bond-based models force ν = 1/4 (3D, plane strain) or 1/3 (plane stress).
-#include <array>
 #include <cstdint>
+#include <string_view>
 
-#include "peridot/materials/material.hpp"
-#include "peridot/state/fields.hpp"
+#include "peridot/deck/model_schema.hpp"
+#include "peridot/materials/model_base.hpp"
 
 namespace peridot {
 
-struct Pmb {
-  static constexpr bool uses_dilatation = false;
-  static constexpr int bond_history_arrays = 0;
-  /// Per-point scratch of this model that a partner's force reads (exchanged to ghosts): none.
-  static constexpr std::array<std::vector<double> MaterialHistory::*, 0> partner_point_scratch{};
-  /// The extension a bond adds to the dilatation sum.
-  static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
+struct Pmb : ModelBase {
+  static constexpr std::string_view name = "pmb";
+  static ModelInfo info();
+
+  struct Params {
+    /// Micromodulus c0 (N/m⁶ in 3D): bond micromodulus c(ξ) = c0 ω(ξ).
+    double micromodulus = 0;
+  };
+  static Params resolve(const MaterialSpec& spec, const Problem& problem, MaterialParams& block);
 
   /// Scalar force state t = T⟨ξ⟩·M (N/m⁶) of a bond of reference length xi and extension e.
-  static double force_scalar(const MaterialParams& p, const KernelFields&, std::size_t /*point*/, std::uint64_t /*bond*/,
+  static double force_scalar(const Params& p, const KernelFields&, std::size_t /*point*/, std::uint64_t /*bond*/,
                              double e, double xi, double omega) {
     return 0.5 * p.micromodulus * omega * e / xi;
   }
   /// This point's share of the bond energy density per unit neighbour volume (J/m⁶): ½ · ½ c s² ξ.
-  static double bond_energy(const MaterialParams& p, const KernelFields&, std::size_t /*point*/, std::uint64_t /*bond*/,
+  static double bond_energy(const Params& p, const KernelFields&, std::size_t /*point*/, std::uint64_t /*bond*/,
                             double e, double xi, double omega) {
     return 0.25 * p.micromodulus * omega * e * e / xi;
   }
-  static double point_energy(const MaterialParams&, const KernelFields&, std::size_t /*point*/) { return 0; }
+  static double point_energy(const Params&, const KernelFields&, std::size_t /*point*/) { return 0; }
 };
 
 /// The Poisson ratio a bond-based model implies: 1/3 in plane stress, 1/4 otherwise.

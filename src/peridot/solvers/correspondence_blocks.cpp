@@ -15,7 +15,7 @@
 #include "peridot/correspondence/hypoelastic.hpp"
 #include "peridot/correspondence/j2_viscoplastic.hpp"
 #include "peridot/correspondence/kinematics.hpp"
-#include "peridot/materials/registry.hpp"
+#include "peridot/materials/models.hpp"
 #include "peridot/solvers/simulation.hpp"
 
 namespace peridot {
@@ -26,9 +26,9 @@ namespace {
 
 using AnyBlock = std::variant<CorrespondenceBlock<Hypoelastic>, CorrespondenceBlock<J2Viscoplastic>>;
 
-AnyBlock make_block(const MaterialParams& p, BlockRange range) {
-  const double K = p.elastic.bulk_modulus, G = p.elastic.shear_modulus;
-  if (p.constitutive_law == ConstitutiveLawKind::hypoelastic) return CorrespondenceBlock<Hypoelastic>({K, G}, range);
+AnyBlock make_block(const MaterialParams& block, const CorrespondenceModel::Params& p, BlockRange range) {
+  const double K = block.elastic.bulk_modulus, G = block.elastic.shear_modulus;
+  if (p.law == ConstitutiveLawKind::hypoelastic) return CorrespondenceBlock<Hypoelastic>({K, G}, range);
   J2Viscoplastic law;
   law.bulk = K;
   law.shear = G;
@@ -37,8 +37,8 @@ AnyBlock make_block(const MaterialParams& p, BlockRange range) {
   law.rate_exponent = p.rate_exponent;
   law.reference_plastic_strain = p.reference_plastic_strain;
   law.reference_plastic_strain_rate = p.reference_strain_rate;
-  law.thermal = p.thermal_softening;
-  law.density = p.density;
+  law.thermal = p.thermal;
+  law.density = block.density;
   return CorrespondenceBlock<J2Viscoplastic>(law, range);
 }
 
@@ -47,11 +47,11 @@ void check_interfaces(const Problem& problem, const ModelContext& model) {
   const Discretization& disc = *model.disc;
   const BondList& bonds = *model.bonds;
   for (std::size_t b = 0; b < model.ranges.size(); ++b) {
-    if (model.params[b].model != ModelKind::correspondence) continue;
+    if (!is_model<CorrespondenceModel>(model.params[b])) continue;
     for (std::size_t i = model.ranges[b].begin; i < model.ranges[b].end; ++i)
       for (std::uint64_t k = bonds.offsets[i]; k < bonds.offsets[i + 1]; ++k) {
         const std::size_t other = static_cast<std::size_t>(disc.block[bonds.neighbors[k]]);
-        if (model.params[other].model == ModelKind::correspondence) continue;
+        if (is_model<CorrespondenceModel>(model.params[other])) continue;
         const BodySpec& body = problem.bodies[b];
         throw InputError(body.pos, fmt::format(
             "bodies.{}: this correspondence body is bonded to body '{}' (material {}, model {}), at its point "
@@ -59,7 +59,7 @@ void check_interfaces(const Problem& problem, const ModelContext& model) {
             "bonds between a correspondence body and a body of another model are not supported: keep the bodies "
             "more than a horizon apart or give both the correspondence model",
             body.name, problem.bodies[other].name, problem.material_of(problem.bodies[other]).name,
-            model_info(model.params[other].model).name, disc.x(i, 0),
+            model_name(model.params[other].model), disc.x(i, 0),
             disc.x(i, 1), disc.x(i, 2)));
       }
   }
@@ -102,8 +102,8 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
     const MaterialParams& p = model.params[b];
     geometry.push_back({p.horizon, p.influence});
     // A block with no point on this rank still takes part: its ghosts' exchange is collective.
-    if (p.model != ModelKind::correspondence) continue;
-    m.blocks.push_back(make_block(p, model.ranges[b]));
+    if (!is_model<CorrespondenceModel>(p)) continue;
+    m.blocks.push_back(make_block(p, model.model_params_of<CorrespondenceModel>(b), model.ranges[b]));
     m.block_index.push_back(b);
   }
   if (m.blocks.empty()) return;
@@ -112,8 +112,9 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   m.ctx = make_correspondence_context(*model.disc, *model.bonds, geometry, model.partial_volume_radius);
   for (std::size_t b : m.block_index) {
     const MaterialParams& p = model.params[b];
-    m.ctx.hourglass_stiffness[b] = hourglass_stiffness(p.hourglass_coefficient, p.elastic.bulk_modulus, p.horizon);
-    m.ctx.hourglass_damping[b] = p.stable_damping;  // hourglass_damping(C_HV, ρ, K, δ), materials/material.cpp
+    const double coefficient = model.model_params_of<CorrespondenceModel>(b).hourglass_coefficient;
+    m.ctx.hourglass_stiffness[b] = hourglass_stiffness(coefficient, p.elastic.bulk_modulus, p.horizon);
+    m.ctx.hourglass_damping[b] = p.stable_damping;  // hourglass_damping(C_HV, ρ, K, δ): CorrespondenceModel::resolve
   }
   // Symmetry planes (mirror_bonds.hpp): the walls with contact: symmetry (check_symmetry_walls has
   // vetted them).
@@ -126,7 +127,7 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
     for (const MaterialParams& p : model.params) {
       options.horizon_of_block.push_back(p.horizon);
       options.influence_of_block.push_back(p.influence);
-      options.block_is_mirrored.push_back(p.model == ModelKind::correspondence ? 1 : 0);
+      options.block_is_mirrored.push_back(is_model<CorrespondenceModel>(p) ? 1 : 0);
     }
     options.partial_volume_radius = model.partial_volume_radius;
     options.bond_beyond_horizon = problem.partial_volume == PartialVolumeKind::extended;
@@ -321,8 +322,9 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
 }
 
 bool any_thermal_softening(const ModelContext& model) {
-  for (const MaterialParams& p : model.params)
-    if (p.model == ModelKind::correspondence && p.thermal_softening.enabled) return true;
+  for (std::size_t b = 0; b < model.params.size(); ++b)
+    if (is_model<CorrespondenceModel>(model.params[b]) && model.model_params_of<CorrespondenceModel>(b).thermal.enabled)
+      return true;
   return false;
 }
 

@@ -16,12 +16,16 @@
 namespace peridot {
 
 void calibrate_models(ModelContext& ctx) {
-  const bool plastic = std::any_of(ctx.params.begin(), ctx.params.end(),
-                                   [](const MaterialParams& p) { return p.model == ModelKind::lps_plastic; });
-  ctx.yield_norm_factor.assign(plastic ? ctx.disc->num_points() : 0, 0.0);
+  int constants = 0;
+  for (const MaterialParams& p : ctx.params)
+    constants = std::max(constants, with_model(p.model, [](auto m) { return decltype(m)::point_constant_arrays; }));
+  ctx.point_constants.assign(static_cast<std::size_t>(constants), std::vector<double>(ctx.disc->num_points(), 0.0));
   for (std::size_t b = 0; b < ctx.ranges.size(); ++b)
-    if (ctx.params[b].model == ModelKind::lps_plastic && ctx.ranges[b].begin < ctx.ranges[b].end)
-      LpsPlastic::calibrate(ctx, ctx.params[b], ctx.ranges[b]);
+    if (ctx.ranges[b].begin < ctx.ranges[b].end)
+      with_model(ctx.params[b].model, [&](auto model) {
+        using Model = decltype(model);
+        Model::calibrate(ctx, ctx.params[b], ctx.model_params_of<Model>(b), ctx.ranges[b]);
+      });
   // Ghosts carry their block too, and a bond loop reads their volumes: all points count.
   const Discretization& disc = *ctx.disc;
   constexpr double unset = -1;
@@ -51,14 +55,11 @@ KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& t
   s.theta = theta.data();
   s.inverse_m = ctx.inverse_weighted_volume.data();
   if (history) {
-    s.yield_scale = history->yield_scale.data();
-    s.deviatoric_moment = history->deviatoric_moment.data();
-    s.released_extension = history->released_extension.data();
-    s.bond0 = history->bond[0].empty() ? nullptr : history->bond[0].data();
-    s.bond1 = history->bond[1].empty() ? nullptr : history->bond[1].data();
+    for (std::size_t k = 0; k < history->point.size(); ++k) s.point[k] = history->point[k].data();
+    for (std::size_t k = 0; k < history->bond.size(); ++k) s.bond[k] = history->bond[k].empty() ? nullptr : history->bond[k].data();
   }
-  PERIDOT_REQUIRE(ctx.bond_history_arrays() == 0 || (s.bond0 && s.yield_scale),
-                  "an inelastic model needs the material history");
+  PERIDOT_REQUIRE(ctx.bond_history_arrays() == 0 || s.bond[0], "an inelastic model needs the material history");
+  PERIDOT_REQUIRE(ctx.point_arrays() == 0 || s.point[0], "a model with point arrays needs the material history");
   return s;
 }
 
@@ -67,12 +68,27 @@ using namespace bond_loop;
 namespace {
 
 /// t_ji for a neighbour in another block (interfaces only): dispatch on the neighbour's model.
-inline double other_block_force_scalar(const MaterialParams& pj, const KernelFields& s, std::size_t j,
+inline double other_block_force_scalar(const ModelContext& ctx, std::size_t block, const KernelFields& s, std::size_t j,
                                        std::uint64_t reverse_bond, double e, double xi) {
+  const MaterialParams& pj = ctx.params[block];
   const double omega = influence(pj.influence, xi, pj.horizon);
   // Bonds between a correspondence block and another model's block are refused at set-up
-  // (CorrespondenceBlocks), so an interface bond never reaches a correspondence neighbour.
-  return with_bond_model(pj.model, [&](auto model) { return model.force_scalar(pj, s, j, reverse_bond, e, xi, omega); });
+  // (CorrespondenceBlocks), so an interface bond never reaches a model without a bond kernel.
+  return with_model(pj.model, [&](auto model) -> double {
+    using Model = decltype(model);
+    if constexpr (!Model::has_bond_kernel)
+      throw std::logic_error("other_block_force_scalar: model " + std::string(Model::name) + " has no bond kernel");
+    else
+      return Model::force_scalar(ctx.model_params_of<Model>(block), s, j, reverse_bond, e, xi, omega);
+  });
+}
+
+/// n of θ = (n/m) Σ ω ξ e V: the model's dilatation factor, or 3 for a model without θ of its own (its θ is
+/// only an output there).
+template <int Dim, class Params>
+inline double dilatation_factor_of(const Params& mp) {
+  if constexpr (requires { mp.dilatation_factor; }) return mp.dilatation_factor;
+  else return 3;
 }
 
 /// The bond passes hand out a block's points in chunks to whichever thread is free (schedule(dynamic)). On a
@@ -216,10 +232,11 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
 
 /// Σ_j of the force density on point i from the bonds of the run.
 template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence>
-inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, const KernelFields& s_in, std::size_t i,
-                      double f[3]) {
+inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, const typename Model::Params& mp_in,
+                      const KernelFields& s_in, std::size_t i, double f[3]) {
   const SameBlockRun run = run_in;  // private copies (SameBlockRun)
   const MaterialParams p = p_in;
+  const typename Model::Params mp = mp_in;
   const KernelFields s = s_in;
   constexpr bool reads_partner_bond = Model::bond_history_arrays > 0;
   const bool partial_volume = run.partial_volume_radius > 0;
@@ -237,8 +254,8 @@ inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, co
     const double e = length - xi;
     const double omega = influence_of<Influence>(xi, p.horizon);
     const std::uint64_t partner_bond = reads_partner_bond ? run.reverse[b] : 0;
-    const double t = Model::force_scalar(p, s, i, b, e, xi, omega) +
-                     Model::force_scalar(p, s, j, partner_bond, e, xi, omega);
+    const double t = Model::force_scalar(mp, s, i, b, e, xi, omega) +
+                     Model::force_scalar(mp, s, j, partner_bond, e, xi, omega);
     double v = run.volume[j];
     if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
     const double carried = t * v / length;
@@ -431,9 +448,9 @@ template <FailureCheck Check, class Carried>
 /// PMB force on point i from its run: c ω e V_j/(|ξ||Y|) along Y per bond (Pmb::force_scalar of both ends),
 /// δ of the 1/|ξ| influence and c in one constant, and a uniform V_j too.
 template <InfluenceKind Influence, FailureCheck Check>
-void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i, const IntactRun& bonds,
-                          double f[3]) {
-  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.micromodulus * p.horizon : p.micromodulus,
+void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, const Pmb::Params& mp, std::size_t i,
+                          const IntactRun& bonds, double f[3]) {
+  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? mp.micromodulus * p.horizon : mp.micromodulus,
                              p.horizon);
   sum_bond_forces<Check>(run, i, bonds, [&](const BondGroup& g, const std::uint32_t* j) __attribute__((always_inline)) {
     const __m512d cv = volume(run, j, nullptr, g.xi);
@@ -472,11 +489,11 @@ void run_dilatation_lps_avx512(const SameBlockRun& run, const MaterialParams& p,
 /// with ω = δ/|ξ| that is δ[α_d (a_i + a_j) e/|ξ| + β (a_i θ_i + a_j θ_j)], δ in the volume constant. θ_j and
 /// a_j are gathered (one widening of the indices for both, and for V_j).
 template <InfluenceKind Influence, FailureCheck Check>
-void run_force_lps_avx512(const SameBlockRun& run, const MaterialParams& p, const KernelFields& s, std::size_t i,
-                          const IntactRun& bonds, double f[3]) {
+void run_force_lps_avx512(const SameBlockRun& run, const MaterialParams& p, const Lps::Params& mp, const KernelFields& s,
+                          std::size_t i, const IntactRun& bonds, double f[3]) {
   const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
-  const double beta = p.alpha_volumetric - p.alpha_deviatoric * p.inverse_dilatation_factor;
-  const __m512d alpha_d = _mm512_set1_pd(p.alpha_deviatoric), beta_v = _mm512_set1_pd(beta);
+  const double beta = mp.alpha_volumetric - mp.alpha_deviatoric * mp.inverse_dilatation_factor;
+  const __m512d alpha_d = _mm512_set1_pd(mp.alpha_deviatoric), beta_v = _mm512_set1_pd(beta);
   const __m512d a_i = _mm512_set1_pd(s.inverse_m[i]), a_theta_i = _mm512_set1_pd(s.inverse_m[i] * s.theta[i]);
   sum_bond_forces<Check>(run, i, bonds, [&](const BondGroup& g, const std::uint32_t* j) __attribute__((always_inline)) {
     const __m512i index = wide_index(j);
@@ -495,20 +512,21 @@ PERIDOT_AVX512_END
 /// Point i's force from its own block through an AVX-512 loop, where one applies (3D PMB or LPS, the constant
 /// or 1/|ξ| influence); false elsewhere, and then nothing is done. It reads and writes the bond list itself.
 template <int Dim, class Model>
-bool force_in_place(const SameBlockRun& run, const MaterialParams& p, const KernelFields& s, std::size_t i,
-                    const std::uint32_t* neighbors, std::uint8_t* broken, IntactScratch& scratch, double f[3]) {
+bool force_in_place(const SameBlockRun& run, const MaterialParams& p, const typename Model::Params& mp,
+                    const KernelFields& s, std::size_t i, const std::uint32_t* neighbors, std::uint8_t* broken,
+                    IntactScratch& scratch, double f[3]) {
 #if PERIDOT_AVX512_GATHER
   if constexpr (Dim == 3 && (std::is_same_v<Model, Pmb> || std::is_same_v<Model, Lps>)) {
     return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
       const IntactRun bonds(run, neighbors, broken, scratch);
       if constexpr (std::is_same_v<Model, Pmb>)
-        run_force_pmb_avx512<kind.value, check.value>(run, p, i, bonds, f);
+        run_force_pmb_avx512<kind.value, check.value>(run, p, mp, i, bonds, f);
       else
-        run_force_lps_avx512<kind.value, check.value>(run, p, s, i, bonds, f);
+        run_force_lps_avx512<kind.value, check.value>(run, p, mp, s, i, bonds, f);
     });
   }
 #endif
-  (void)run, (void)p, (void)s, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)f;
+  (void)run, (void)p, (void)mp, (void)s, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)f;
   return false;
 }
 
@@ -536,7 +554,6 @@ bool dilatation_in_place(const SameBlockRun& run, const MaterialParams& p, std::
 
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
                         MaterialHistory* history) {
-  double* released = history && !history->released_extension.empty() ? history->released_extension.data() : nullptr;
   const BondFailure failure(ctx);
   const std::vector<double>& inverse_m = ctx.inverse_weighted_volume;
   const double* x = ctx.disc->x.data();
@@ -549,10 +566,16 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
   const KernelFields fields = kernel_fields(ctx, theta, history);
   // With protected points the failure check needs both ends' flags: the general path only.
   const bool vector_path = failure.no_fail == nullptr;
-  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
+  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
     using Model = decltype(model);
     const double break_limit = fail_bonds ? p.critical_stretch : std::numeric_limits<double>::infinity();
+    const double dilatation_factor = dilatation_factor_of<Dim>(mp);
+    constexpr int released_array = Model::released_extension_array;
+    double* released = nullptr;  // what θ lost to the bonds breaking now, where the model keeps it
+    if constexpr (released_array >= 0)
+      if (history && history->point.size() > static_cast<std::size_t>(released_array))
+        released = history->point[released_array].data();
     const int chunk = points_per_chunk(range);
 #pragma omp parallel
     {
@@ -593,7 +616,7 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
           for (std::uint64_t b = run.b_begin; b < run.b_end; ++b) general_bond(b);
         for (std::uint64_t b = bonds.offsets[i]; b < run.b_begin; ++b) general_bond(b);
         for (std::uint64_t b = run.b_end; b < bonds.offsets[i + 1]; ++b) general_bond(b);
-        theta[i] = p.dilatation_factor * sum * inverse_m[i];
+        theta[i] = dilatation_factor * sum * inverse_m[i];
         if (released && fail_bonds) released[i] = lost * inverse_m[i];
       }
     }
@@ -602,15 +625,15 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
 
 void prepare_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                      MaterialHistory& history) {
-  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, BlockRange range) {
-    if constexpr (decltype(model)::bond_history_arrays > 0) model.prepare(ctx, u, theta, history, p, range);
+  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
+    model.prepare(ctx, u, theta, history, p, mp, range);
   });
 }
 
 void commit_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                     MaterialHistory& history, double dt) {
-  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, BlockRange range) {
-    if constexpr (decltype(model)::bond_history_arrays > 0) model.commit(ctx, u, theta, history, p, range, dt);
+  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
+    model.commit(ctx, u, theta, history, p, mp, range, dt);
   });
 }
 
@@ -630,7 +653,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
   const bool after_force = ctx.bond_failure_after_force;
   // With protected points the failure check needs both ends' flags: the general path only.
   const bool vector_path = failure.no_fail == nullptr;
-  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
+  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
     using Model = decltype(model);
     const double infinity = std::numeric_limits<double>::infinity();
@@ -646,14 +669,14 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
         set_same_block_run(bonds, blocks, i, run);
         double fi[3] = {0, 0, 0};
         const bool in_place =
-            vector_path && force_in_place<Dim, Model>(run, p, fields, i, neighbors, broken, intact, fi);
+            vector_path && force_in_place<Dim, Model>(run, p, mp, fields, i, neighbors, broken, intact, fi);
         if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             if (fail_bonds)
-              run_force<Dim, Model, true, kind.value>(run, p, fields, i, fi);
+              run_force<Dim, Model, true, kind.value>(run, p, mp, fields, i, fi);
             else
-              run_force<Dim, Model, false, kind.value>(run, p, fields, i, fi);
+              run_force<Dim, Model, false, kind.value>(run, p, mp, fields, i, fi);
           });
           if (fail_bonds) scratch.store(broken, run.b_begin, run.b_end);
         }
@@ -671,9 +694,10 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
           const double omega = influence(p.influence, g.xi, p.horizon);
           const std::uint64_t partner_bond = any_history ? reverse[b] : 0;
           const double t_ji = blocks[j] == blocks[i]
-                                  ? model.force_scalar(p, fields, j, partner_bond, g.e, g.xi, omega)
-                                  : other_block_force_scalar(ctx.params[blocks[j]], fields, j, partner_bond, g.e, g.xi);
-          const double t = model.force_scalar(p, fields, i, b, g.e, g.xi, omega) + t_ji;
+                                  ? model.force_scalar(mp, fields, j, partner_bond, g.e, g.xi, omega)
+                                  : other_block_force_scalar(ctx, static_cast<std::size_t>(blocks[j]), fields, j,
+                                                             partner_bond, g.e, g.xi);
+          const double t = model.force_scalar(mp, fields, i, b, g.e, g.xi, omega) + t_ji;
           const double scale = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
           fx += scale * g.y[0];
           fy += scale * g.y[1];
@@ -698,17 +722,17 @@ void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u
   const double* up = u.data();
   const BondList& bonds = *ctx.bonds;
   W.resize(ctx.disc->num_points());
-  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, BlockRange range) {
+  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
-      double sum = model.point_energy(p, fields, i);
+      double sum = model.point_energy(mp, fields, i);
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
-        sum += model.bond_energy(p, fields, i, b, g.e, g.xi, omega) * neighbor_volume(ctx, i, j, g.xi);
+        sum += model.bond_energy(mp, fields, i, b, g.e, g.xi, omega) * neighbor_volume(ctx, i, j, g.xi);
       }
       W[i] = sum;
     }

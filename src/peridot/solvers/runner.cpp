@@ -11,7 +11,7 @@
 #include <fmt/format.h>
 
 #include "peridot/deck/deck.hpp"
-#include "peridot/materials/registry.hpp"
+#include "peridot/materials/models.hpp"
 #include "peridot/output/csv_writer.hpp"
 #include "peridot/output/exodus_writer.hpp"
 #include "peridot/state/point_fields.hpp"
@@ -61,7 +61,7 @@ std::string describe_setup(const Simulation& sim) {
     const BlockRange r = ranges[b];
     const MaterialParams& p = sim.model().params[b];
     out << fmt::format("  block {:<10} {} points, model {}, horizon {:.6g} m, critical stretch {}\n", disc.block_names[b],
-                       r.end - r.begin, model_info(p.model).name, p.horizon,
+                       r.end - r.begin, model_name(p.model), p.horizon,
                        std::isfinite(p.critical_stretch) ? fmt::format("{:.6g}", p.critical_stretch) : "none");
   }
   out << fmt::format("bonds            {} directed ({:.1f} per point)\n", static_cast<std::uint64_t>(bonds),

@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include "peridot/damage/fragments.hpp"
-#include "peridot/materials/registry.hpp"
 #include "peridot/parallel/domain.hpp"
 #include "peridot/state/point_fields.hpp"
 
@@ -44,7 +43,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   neighborhood.bond_beyond_horizon = problem_.partial_volume == PartialVolumeKind::extended;
   neighborhood.precracks = problem_.precracks;
   for (const BodySpec& body : problem_.bodies) {
-    model_.params.push_back(resolve_material(problem_.material_of(body), body.horizon, problem_));
+    model_.add_block(resolve_material(problem_.material_of(body), body.horizon, problem_));
     neighborhood.horizon_of_block.push_back(body.horizon);
   }
   std::vector<std::uint8_t> no_fail;  // per global point
@@ -100,10 +99,13 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   any_dilatation_ = model_.any_dilatation();
   any_damage_ = model_.any_damage();
   history_arrays_ = model_.bond_history_arrays();
-  partner_scratch_ = model_.partner_point_scratch();
+  partner_arrays_ = model_.partner_point_arrays();
+  released_arrays_ = model_.released_extension_arrays();
+  has_history_ = history_arrays_ > 0 || model_.point_arrays() > 0;
 
   state_.resize(disc_.num_points());
   if (history_arrays_ > 0) state_.size_history(bonds_.num_bonds() + bonds_.partner_slots, history_arrays_);
+  model_.initialize_point_arrays(state_.history);
   compute_weighted_volume(model_, state_.weighted_volume);
   halo_.exchange(state_.weighted_volume);
   if (!comm_.serial()) gather_field(state_.weighted_volume.data(), 1, global_state_.weighted_volume);  // constant
@@ -150,16 +152,16 @@ void Simulation::evaluate(double dt, bool break_bonds) {
   // before any force uses the bond).
   const bool fail = break_bonds && any_damage_;
   const bool fail_in_force_pass = !any_dilatation_ || model_.bond_failure_after_force;
-  if (!fail && !state_.history.released_extension.empty())  // no bond breaks now: θ lost nothing to one
-    std::fill(state_.history.released_extension.begin(), state_.history.released_extension.end(), 0.0);
+  if (!fail)  // no bond breaks now: θ lost nothing to one
+    for (int k : released_arrays_) std::fill(state_.history.point[k].begin(), state_.history.point[k].end(), 0.0);
   if (any_dilatation_) {
     compute_dilatation(model_, state_.u, state_.dilatation, fail && !fail_in_force_pass, &state_.history);
     halo_.exchange(state_.dilatation);
   }
-  if (history_arrays_ > 0) {
-    set_time_step(model_.params, dt);
+  if (has_history_) {
+    model_.set_time_step(dt);
     prepare_history(model_, state_.u, state_.dilatation, state_.history);
-    for (auto field : partner_scratch_) halo_.exchange(state_.history.*field);  // what partners' forces read
+    for (int k : partner_arrays_) halo_.exchange(state_.history.point[k]);  // what partners' forces read
   }
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, fail && fail_in_force_pass,
                          &state_.history);
@@ -175,8 +177,8 @@ void Simulation::evaluate(double dt, bool break_bonds) {
 }
 
 void Simulation::commit(double dt) {
-  if (history_arrays_ > 0) {
-    set_time_step(model_.params, dt);
+  if (has_history_) {
+    model_.set_time_step(dt);
     commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
   }
   // A failed correspondence evaluation is reported by the caller; its collective release decision is

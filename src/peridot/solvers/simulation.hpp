@@ -203,9 +203,12 @@ class Simulation {
   std::unique_ptr<TimeIntegrator> integrator_;
   std::vector<double> work_;  ///< J, external work done on each point since t = 0
   bool any_dilatation_ = false, any_damage_ = false;
-  /// The per-point scratch the present models' partners read (ModelContext::partner_point_scratch).
-  std::vector<std::vector<double> MaterialHistory::*> partner_scratch_;
+  /// The point arrays the present models' partners read (ModelContext::partner_point_arrays).
+  std::vector<int> partner_arrays_;
+  /// The point arrays that keep what θ lost to breaking bonds (ModelContext::released_extension_arrays).
+  std::vector<int> released_arrays_;
   int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
+  bool has_history_ = false;  ///< a model keeps bond or point arrays: prepare and commit run
   bool correspondence_failed_ = false;  ///< the last evaluate() failed in a correspondence block
   std::int64_t fragments_step_ = -1;  ///< the step state_.fragment was labelled at (-1: never)
 };

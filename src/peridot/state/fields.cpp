@@ -15,12 +15,7 @@ void State::resize(std::size_t n) {
 }
 
 void State::size_history(std::size_t nnz, int arrays) {
-  for (int k = 0; k < 2; ++k) history.bond[k].assign(k < arrays ? nnz : 0, 0.0);
-  const std::size_t n = arrays > 0 ? history.plastic_strain.size() : 0;
-  history.yield_scale.assign(n, 1.0);
-  history.plastic_strain_increment.assign(n, 0.0);
-  history.deviatoric_moment.assign(n, 0.0);
-  history.released_extension.assign(n, 0.0);
+  history.bond.assign(static_cast<std::size_t>(arrays), std::vector<double>(nnz, 0.0));
 }
 
 const std::vector<std::string>& correspondence_output_names() {

@@ -60,19 +60,16 @@ struct BondList {
   std::size_t num_bonds() const { return neighbors.size(); }
 };
 
-/// The history of the inelastic models: per-bond arrays parallel to BondList, per-point arrays, and the
-/// scratch of the current step's return map. Each model says what its arrays hold (materials/lps_plastic.hpp,
-/// lps_viscoelastic.hpp); the bond arrays and the scratch are empty when no block needs them (State::
-/// size_history), plastic_strain and dissipation (outputs) always exist.
+/// The history of the inelastic models: per-bond arrays parallel to BondList and per-point arrays, whose
+/// meaning each point's model declares (bond_history_arrays, point_arrays: materials/model_base.hpp), and
+/// the two point fields every inelastic model reports. The arrays are empty when no model of the problem
+/// declares them; plastic_strain and dissipation (outputs) always exist.
 struct MaterialHistory {
-  std::vector<double> bond[2];                ///< lps_plastic: e^dp (bond[1] empty); lps_viscoelastic: e^b, e^d of the last step
-  std::vector<double> plastic_strain;         ///< ε̄p, equivalent plastic strain (-)
-  std::vector<double> dissipation;            ///< dissipated energy density since t = 0 (J/m³)
-  std::vector<double> yield_scale;            ///< this step: t^d = r t^d_trial, r ∈ (0, 1] (lps_plastic)
-  std::vector<double> plastic_strain_increment;  ///< this step: Δε̄p (lps_plastic)
-  std::vector<double> deviatoric_moment;      ///< this step: q = Σ ω ξ (e^d − e^dp) V / m over intact bonds (lps_plastic)
-  std::vector<double> released_extension;     ///< this step: Σ ω ξ e V / m over the bonds that broke in it
-  bool has_bond_history() const { return !bond[0].empty(); }
+  std::vector<std::vector<double>> bond;   ///< per bond (and partner-bond slot), as many as the most any model needs
+  std::vector<std::vector<double>> point;  ///< per point (owned and ghost): history or the step's scratch
+  std::vector<double> plastic_strain;      ///< ε̄p, equivalent plastic strain (-)
+  std::vector<double> dissipation;         ///< dissipated energy density since t = 0 (J/m³)
+  bool has_bond_history() const { return !bond.empty(); }
 };
 
 /// What changes during a run.
@@ -93,7 +90,8 @@ struct State {
   std::map<std::string, std::vector<double>> point_outputs;
   /// Sizes the point fields for n points (zeros); the bond history stays empty until size_history.
   void resize(std::size_t n);
-  /// Allocates `arrays` (1 or 2) per-bond history arrays of nnz zeros and the per-point scratch (after resize).
+  /// Allocates `arrays` per-bond history arrays of nnz zeros (after resize); the point arrays are the
+  /// models' (ModelContext::initialize_point_arrays).
   void size_history(std::size_t nnz, int arrays);
 };
 

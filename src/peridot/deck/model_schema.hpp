@@ -1,9 +1,8 @@
 #pragma once
-// The material models Peridot knows, one line each in registry.cpp: name, kind, description, reference,
-// the keys the model adds to the common material keys, and its documentation page. The deck parser
-// validates a material against these tables and `peridot info` prints them (`peridot info --model NAME`
-// the page, docs/models/NAME.md); adding a model means adding its line and its ModelDoc there.
-#include <optional>
+// The material models as the deck sees them: each model's name, keys, nested sections, cross-key checks and
+// documentation page. The catalogue itself, material_models(), is defined by the model list
+// (materials/models.cpp), where each model describes itself in its own file pair; the deck reads the
+// catalogue through this header only, so that the deck does not depend on the models' kernels.
 #include <string_view>
 #include <vector>
 
@@ -11,6 +10,9 @@
 #include "peridot/deck/schema.hpp"
 
 namespace peridot {
+
+class DeckContext;
+class MapReader;
 
 /// The hand-written part of a model's page, Markdown; the syntax and parameter table are generated from
 /// the KeySpecs. Say only what the code does.
@@ -24,20 +26,27 @@ struct ModelDoc {
 
 struct ModelInfo {
   std::string_view name;
-  ModelKind kind;
   std::string_view description;
   std::string_view reference;
   /// Bond-based models have a fixed Poisson ratio (1/4 in 3D and plane strain, 1/3 in plane stress),
   /// so the deck gives one modulus; state-based ones take any two elastic constants.
   bool bond_based = false;
-  std::vector<KeySpec> extra_keys;  ///< model parameters beyond common_material_keys()
+  /// The model's parameters beyond common_material_keys(), in the order the resolved deck writes them.
+  /// The parser keeps every valid value and every default in MaterialSpec::parameters.
+  std::vector<KeySpec> keys;
+  /// The tables of its keys of type mapping, path "materials.<name>.KEY"; their values are kept in
+  /// MaterialSpec::parameters as "KEY.SUBKEY".
+  std::vector<SectionSpec> sections;
   ModelDoc doc;
   int dimension = 0;  ///< 0: 2D and 3D; 3: 3D only (the deck refuses the model in 2D)
+  /// Checks across keys that the tables cannot state (a key that only one variant accepts, keys that go
+  /// together); reports through the context. Null: none.
+  void (*check)(const MapReader& material, const ModelParameters& parameters, DeckContext& context) = nullptr;
 };
 
+/// Every model, in registration order (materials/models.hpp).
 const std::vector<ModelInfo>& material_models();
 const ModelInfo* find_model(std::string_view name);
-const ModelInfo& model_info(ModelKind kind);
 std::vector<std::string_view> model_names();
 
 /// Keys of every material: model, density, elastic constants, influence function, damage.
@@ -46,8 +55,6 @@ std::vector<KeySpec> common_material_keys();
 std::vector<KeySpec> material_keys(const ModelInfo& model);
 /// Keys of a material's damage section.
 std::vector<KeySpec> damage_keys();
-/// Keys of a j2_viscoplastic material's thermal_softening section.
-std::vector<KeySpec> thermal_softening_keys();
 /// How critical-stretch damage works, for the model pages (Markdown; the same for every model).
 std::string_view damage_doc();
 

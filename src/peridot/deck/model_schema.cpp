@@ -1,0 +1,71 @@
+#include "peridot/deck/model_schema.hpp"
+
+// KeySpecs are written with designated initializers that leave the other fields at their defaults on
+// purpose; GCC 12 warns about every omitted field regardless.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+namespace peridot {
+
+const ModelInfo* find_model(std::string_view name) {
+  for (const ModelInfo& model : material_models())
+    if (model.name == name) return &model;
+  return nullptr;
+}
+
+std::vector<std::string_view> model_names() {
+  std::vector<std::string_view> names;
+  for (const ModelInfo& model : material_models()) names.push_back(model.name);
+  return names;
+}
+
+std::vector<KeySpec> common_material_keys() {
+  return {
+      {.key = "model", .type = ValueType::choice, .description = "material model (see the model list)", .required = true,
+       .choices = model_names()},
+      {.key = "density", .unit = Unit::density, .range = positive, .description = "mass density ρ (kg/m^3)", .required = true},
+      {.key = "bulk_modulus", .unit = Unit::pressure, .range = positive, .description = "K (Pa)"},
+      {.key = "shear_modulus", .unit = Unit::pressure, .range = positive, .description = "G (Pa)"},
+      {.key = "youngs_modulus", .unit = Unit::pressure, .range = positive, .description = "E (Pa)"},
+      {.key = "poisson_ratio", .range = {-1, 0.5, true, true},
+       .description = "ν; give any two of K, G, E, ν (bond-based models: one modulus, ν is implied)"},
+      {.key = "influence", .type = ValueType::choice, .default_yaml = "constant",
+       .description = "influence function ω: 1, δ/|ξ| or exp(-|ξ|²/δ²)", .choices = {"constant", "inverse_distance", "gaussian"}},
+      {.key = "damage", .type = ValueType::mapping, .description = "bond breaking (see materials.<name>.damage); omit for none"},
+  };
+}
+
+std::vector<KeySpec> material_keys(const ModelInfo& model) {
+  std::vector<KeySpec> keys = common_material_keys();
+  keys.insert(keys.end(), model.keys.begin(), model.keys.end());
+  return keys;
+}
+
+std::vector<KeySpec> damage_keys() {
+  return {
+      {.key = "critical_stretch", .range = positive, .description = "bond breaks beyond this stretch s0",
+       .required = true, .one_of = "criterion"},
+      {.key = "fracture_energy", .unit = Unit::energy_per_area, .range = positive,
+       .description = "G0 (J/m^2); s0 then follows from K and δ", .required = true, .one_of = "criterion"},
+  };
+}
+
+std::string_view damage_doc() {
+  return R"(A bond breaks, irreversibly, once its stretch s = (|Y| − ξ)/ξ exceeds the critical stretch s0; compression
+never breaks a bond. A bond between two blocks uses the smaller of their s0 (a block without damage counts as
++∞); bonds touching a point of a no_fail node set never break. A broken bond carries no force and no
+energy. The damage of a point is the volume-weighted fraction of its broken bonds,
+φ = 1 − (intact neighbour volume)/(all neighbour volume). Bonds crossing a pre-crack are never created.
+
+s0 is given (critical_stretch) or follows from the fracture energy G0 (fracture_energy), the work to break
+every bond crossing a unit crack area, with the bond-based micromodulus c0 of the material's K and influence
+function (equations (4) and (5) of the pmb page):
+
+- (D1) 3D: G0 = (π c0 s0²/2) ∫₀^δ ω ξ⁴ dξ, so s0 = √(5G0/(9Kδ)) for ω = 1
+- (D2) 2D, thickness h: G0 = h c0 s0² ∫₀^δ ω ξ³ dξ, so s0 = √(πG0/(3K′δ)) for ω = 1)";
+}
+
+double bond_based_poisson_ratio(int dimension, PlaneKind plane) {
+  return dimension == 2 && plane == PlaneKind::stress ? 1.0 / 3.0 : 0.25;
+}
+
+}  // namespace peridot

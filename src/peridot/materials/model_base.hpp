@@ -1,0 +1,57 @@
+#pragma once
+// What a model need not declare: the defaults of a stateless bond model. Every model derives from ModelBase
+// and overrides what it has. A model is one struct in its own file pair (materials/NAME.{hpp,cpp}) with
+//   - `name`, `info()`: its deck keys, nested sections, cross-key checks and documentation page
+//     (deck/model_schema.hpp), and `Params`, its block constants, built by `resolve` from the deck's
+//     MaterialSpec;
+//   - its kernels: force_scalar, bond_energy, point_energy (static, called per bond: no virtual call);
+//   - what it stores: per-bond history arrays, per-point arrays (history or this step's scratch), which of
+//     those a partner's force reads (exchanged to ghosts), per-point constants from the reference family;
+//   - its hooks: calibrate (once), set_time_step, prepare (before the force, no side effect on the
+//     history), commit (the step is accepted).
+// Its one registration line is in materials/models.hpp.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "peridot/geometry/discretize.hpp"
+#include "peridot/materials/material.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+struct ModelContext;
+
+struct ModelBase {
+  /// A bond kernel (force_scalar, bond_energy, point_energy); the correspondence model has none.
+  static constexpr bool has_bond_kernel = true;
+  /// Needs θ of every point before the force (a dilatation pass over the bonds).
+  static constexpr bool uses_dilatation = false;
+  /// Per-bond history arrays (MaterialHistory::bond[0 … n−1]); the partner's bond j → i is then indexed too.
+  static constexpr int bond_history_arrays = 0;
+  /// Per-point arrays (MaterialHistory::point[k]): history or scratch of the step, with their start values.
+  static constexpr std::array<PointArray, 0> point_arrays{};
+  /// Which of point_arrays a partner's force reads (exchanged to ghosts after prepare).
+  static constexpr std::array<int, 0> partner_point_arrays{};
+  /// The point array that the dilatation pass fills with Σ ω ξ (extension) V / m of the bonds breaking in
+  /// this evaluation (zero when none breaks); −1: none.
+  static constexpr int released_extension_array = -1;
+  /// Per-point constants (ModelContext::point_constants[k]) that calibrate fills once.
+  static constexpr int point_constant_arrays = 0;
+
+  /// The extension a bond adds to the dilatation sum.
+  static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
+
+  template <class Params>
+  static void set_time_step(Params&, double /*dt*/) {}
+  template <class Params>
+  static void calibrate(ModelContext&, const MaterialParams&, const Params&, BlockRange) {}
+  template <class Params>
+  static void prepare(const ModelContext&, const VectorField&, const std::vector<double>&, MaterialHistory&,
+                      const MaterialParams&, const Params&, BlockRange) {}
+  template <class Params>
+  static void commit(const ModelContext&, const VectorField&, const std::vector<double>&, MaterialHistory&,
+                     const MaterialParams&, const Params&, BlockRange, double /*dt*/) {}
+};
+
+}  // namespace peridot
