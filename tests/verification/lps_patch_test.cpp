@@ -92,6 +92,28 @@ TEST_P(LpsPatch, IsotropicStrainGivesExactDilatation) {
   EXPECT_GT(checked, 0);
 }
 
+// pmb has no θ of its own; the output field uses the same definition, so that an isotropic strain gives
+// dimension × ε in 2D too (it used n = 3 there, 1.5 times too much, before the models declared their n).
+TEST_P(LpsPatch, PmbDilatationOutputIsTheSameMeasure) {
+  const auto [dimension, plane] = GetParam();
+  BlockSetup s = patch_setup(dimension, plane);
+  s.model = "pmb";
+  Simulation sim(testing::box_problem(s));
+  const Discretization& disc = sim.discretization();
+  const double eps = 1e-3;
+  const VectorField u = affine_displacement(disc, {eps, eps, eps, 0, 0, 0});
+  std::vector<double> theta;
+  compute_dilatation(sim.model(), u, theta);
+  const double horizon = s.horizon_factor * s.spacing;
+  int checked = 0;
+  for (std::size_t i = 0; i < disc.num_points(); ++i) {
+    if (depth(disc, s, i) <= horizon) continue;
+    EXPECT_NEAR(theta[i], dimension * eps, 1e-12) << "point " << i;
+    ++checked;
+  }
+  EXPECT_GT(checked, 0);
+}
+
 TEST_P(LpsPatch, AffineDeformationGivesClassicalEnergyAndNoInteriorForce) {
   const auto [dimension, plane] = GetParam();
   const BlockSetup s = patch_setup(dimension, plane);

@@ -83,12 +83,12 @@ inline double other_block_force_scalar(const ModelContext& ctx, std::size_t bloc
   });
 }
 
-/// n of θ = (n/m) Σ ω ξ e V: the model's dilatation factor, or 3 for a model without θ of its own (its θ is
-/// only an output there).
+/// n of θ = (n/m) Σ ω ξ e V: the model's dilatation factor, or the dimension for a model without θ of its
+/// own (pmb: its θ is only an output, ε₁₁ + ε₂₂ (+ ε₃₃) of a homogeneous strain as for lps).
 template <int Dim, class Params>
 inline double dilatation_factor_of(const Params& mp) {
   if constexpr (requires { mp.dilatation_factor; }) return mp.dilatation_factor;
-  else return 3;
+  else return Dim;
 }
 
 /// The bond passes hand out a block's points in chunks to whichever thread is free (schedule(dynamic)). On a
