@@ -2,7 +2,7 @@
 // The deck schema: one KeySpec per key (type, unit, default, range, one-line description), grouped in
 // sections. The parser validates every section against its table (deck/map_reader.hpp) and
 // `peridot info` / docs/deck.md print the same tables (print_schema), so the reference cannot drift
-// from what the parser accepts. Material models add their keys in materials/registry.cpp.
+// from what the parser accepts. Material models add their keys in their own files (materials/NAME.cpp, deck/model_schema.hpp).
 #include <limits>
 #include <optional>
 #include <string>

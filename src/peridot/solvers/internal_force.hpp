@@ -25,8 +25,9 @@ void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m);
 
 /// θ_i = (n/m_i) Σ_j ω ξ e V_j over intact bonds, for every point (lps_plastic: e − e^dp in place of e,
 /// lps_plastic.hpp (P7)). With fail_bonds, bonds that fail now (damage/critical_stretch.hpp) are marked
-/// broken first. The history is required when a model keeps one; with fail_bonds its released_extension
-/// receives Σ ω ξ (e − e^dp) V / m over the bonds of each point that broke now.
+/// broken first. The history is required when a model keeps one; with fail_bonds the point array a model
+/// declares as its released_extension_array receives Σ ω ξ (e − e^dp) V / m over the bonds of each point
+/// that broke now.
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta,
                         bool fail_bonds = false, MaterialHistory* history = nullptr);
 
