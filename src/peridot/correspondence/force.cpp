@@ -11,6 +11,14 @@
 
 namespace peridot::correspondence {
 
+double hourglass_stiffness(double coefficient, double bulk_modulus, double horizon) {
+  return 18.0 * coefficient * bulk_modulus / (std::numbers::pi * std::pow(horizon, 4));
+}
+
+double hourglass_damping(double coefficient, double density, double bulk_modulus, double horizon) {
+  return 18.0 * coefficient * std::sqrt(density * bulk_modulus) / (std::numbers::pi * std::pow(horizon, 3));
+}
+
 void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
                                   const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f) {
   compute_correspondence_force(ctx, kin, s, u, v, f, BlockRange{0, ctx.disc->num_points()});

@@ -26,14 +26,16 @@
 // as well as linear momentum; the hourglass force is central and conserves both too.
 #include "peridot/correspondence/constitutive.hpp"
 #include "peridot/correspondence/kinematics.hpp"
-#include "peridot/materials/correspondence_model.hpp"
 
 namespace peridot::correspondence {
 
 /// Dimensionless hourglass coefficient C_HG used when none is chosen (see above).
 inline constexpr double default_hourglass_coefficient = 0.05;
 
-// hourglass_stiffness (c_hg) and hourglass_damping (c_hv) of a coefficient: materials/correspondence_model.hpp.
+/// c_hg = 18 C_HG K/(π δ⁴) (N/m⁶) from C_HG (-), the bulk modulus K (Pa) and the horizon δ (m).
+double hourglass_stiffness(double coefficient, double bulk_modulus, double horizon);
+/// c_hv = 18 C_HV √(ρK)/(π δ³) (N s/m⁶) from C_HV (-), the density ρ (kg/m³), K (Pa) and δ (m).
+double hourglass_damping(double coefficient, double density, double bulk_modulus, double horizon);
 
 /// Internal force density f (N/m³) of every point from the force tensors P K⁻¹ of s (update_block_stress)
 /// and, where ctx.hourglass_stiffness is non-zero, the hourglass force of u and the F of kin, and where

@@ -5,7 +5,16 @@
 #include <cmath>
 #include <limits>
 
+#include <utility>
+
+#include <fmt/format.h>
+
 #include "peridot/correspondence/bracketed_root.hpp"
+#include "peridot/deck/map_reader.hpp"
+
+// KeySpecs are written with designated initializers that leave the other fields at their defaults on
+// purpose; GCC 12 warns about every omitted field regardless.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
 namespace peridot::correspondence {
 
@@ -78,6 +87,77 @@ J2Viscoplastic J2Viscoplastic::aluminium_6061_t6() {
   law.rate_exponent = 44.0;
   law.reference_plastic_strain = 0.001;
   law.reference_plastic_strain_rate = 1000.0;
+  return law;
+}
+
+std::vector<KeySpec> J2Viscoplastic::keys() {
+  return {{.key = "yield_stress", .unit = Unit::pressure, .range = positive,
+           .description = "Y (Pa), quasi-static yield stress; j2_viscoplastic (required there)", .required = true},
+          {.key = "hardening_exponent", .range = positive,
+           .description = "n (-): G ∝ (1 + εp/ε0)^(1/n); j2_viscoplastic; omit for no strain hardening"},
+          {.key = "reference_plastic_strain", .range = positive,
+           .description = "ε0 (-), with hardening_exponent; j2_viscoplastic"},
+          {.key = "rate_exponent", .range = positive,
+           .description = "m (-): G ∝ (1 + ε̇p/ε̇0)^(1/m); j2_viscoplastic; omit for rate independence"},
+          {.key = "reference_strain_rate", .unit = Unit::rate, .range = positive,
+           .description = "ε̇0 (1/s), with rate_exponent; j2_viscoplastic"},
+          {.key = "thermal_softening", .type = ValueType::mapping,
+           .description = "adiabatic heating and Johnson–Cook thermal softening (see materials.<name>.thermal_softening); "
+                          "j2_viscoplastic; omit for none"}};
+}
+
+std::vector<SectionSpec> J2Viscoplastic::sections() {
+  return {{"materials.<name>.thermal_softening",
+           "adiabatic heating and Johnson–Cook thermal softening of constitutive_law: j2_viscoplastic; omit for none",
+           {{.key = "specific_heat", .unit = Unit::specific_heat, .range = positive,
+       .description = "c (J/(kg K)), specific heat at constant pressure", .required = true},
+      {.key = "reference_temperature", .unit = Unit::temperature, .range = positive,
+       .description = "T_r (K): the initial temperature, where the thermal factor is 1", .required = true},
+      {.key = "melting_temperature", .unit = Unit::temperature, .range = positive,
+       .description = "T_m (K): the thermal factor is 0 there; above reference_temperature", .required = true},
+      {.key = "exponent", .range = positive, .description = "q (-): thermal factor 1 − T*^q, Johnson–Cook's m",
+       .required = true},
+      {.key = "taylor_quinney_coefficient", .default_yaml = "0.9", .range = {0, 1, false, false},
+       .description = "β (-): share of the plastic work that heats the point"}}}};
+}
+
+void J2Viscoplastic::check(const MapReader& r, const ModelParameters& q, DeckContext& ctx) {
+  // An exponent and its reference value come together: (1 + εp/ε0)^(1/n), (1 + ε̇p/ε̇0)^(1/m).
+  for (auto [exponent, reference] : {std::pair<std::string_view, std::string_view>{"hardening_exponent", "reference_plastic_strain"},
+                                     {"rate_exponent", "reference_strain_rate"}})
+    if (r.present(exponent) != r.present(reference)) {
+      std::string_view given = r.present(exponent) ? exponent : reference;
+      if (r.given(given))
+        ctx.error(r[given].key_pos, r.path_of(given),
+                  fmt::format("{} and {} go together; give both or neither", exponent, reference));
+    }
+  const ModelParameters::Entry* reference = q.find("thermal_softening.reference_temperature");
+  const ModelParameters::Entry* melting = q.find("thermal_softening.melting_temperature");
+  if (reference && melting && !(melting->number > reference->number))
+    ctx.error(melting->pos, r.path_of("thermal_softening") + ".melting_temperature",
+              fmt::format("melting_temperature ({:g} K) must be above reference_temperature ({:g} K)",
+                          melting->number, reference->number));
+}
+
+J2Viscoplastic J2Viscoplastic::from_parameters(const ModelParameters& q, const ElasticConstants& elastic, double density) {
+  J2Viscoplastic law;
+  law.bulk = elastic.bulk_modulus;
+  law.shear = elastic.shear_modulus;
+  law.yield_stress = q.number("yield_stress");
+  law.hardening_exponent = q.number_or("hardening_exponent", std::numeric_limits<double>::infinity());
+  law.rate_exponent = q.number_or("rate_exponent", std::numeric_limits<double>::infinity());
+  law.reference_plastic_strain = q.number_or("reference_plastic_strain", 1);
+  law.reference_plastic_strain_rate = q.number_or("reference_strain_rate", 1);
+  if (q.has("thermal_softening.taylor_quinney_coefficient")) {  // defaulted: there when the section is
+    ThermalSoftening& t = law.thermal;
+    t.enabled = true;
+    t.specific_heat = q.number("thermal_softening.specific_heat");
+    t.reference_temperature = q.number("thermal_softening.reference_temperature");
+    t.melting_temperature = q.number("thermal_softening.melting_temperature");
+    t.exponent = q.number("thermal_softening.exponent");
+    t.taylor_quinney = q.number("thermal_softening.taylor_quinney_coefficient");
+  }
+  law.density = density;
   return law;
 }
 

@@ -26,12 +26,41 @@
 //   ΔT_{n+1} = ΔT_n + β G_t Δεp / (ρ c)        (S : Δe^p = G_t Δεp for the radial return)
 // β the Taylor–Quinney coefficient. Θ uses T_n (explicit in temperature, as in explicit impact codes),
 // so the return mapping of a step is unchanged apart from the constant factor.
+#include <string_view>
+#include <vector>
+
 #include "peridot/correspondence/constitutive.hpp"
-#include "peridot/materials/correspondence_model.hpp"
+#include "peridot/deck/problem.hpp"
+#include "peridot/deck/schema.hpp"
+
+namespace peridot {
+class DeckContext;
+class MapReader;
+}  // namespace peridot
 
 namespace peridot::correspondence {
 
+/// Adiabatic heating with Johnson–Cook thermal softening of a j2_viscoplastic law (j2_viscoplastic.hpp):
+/// the flow stress is multiplied by 1 − T*^q, T* = (T − T_r)/(T_m − T_r), and T rises by β ΔW_p/(ρ c).
+struct ThermalSoftening {
+  bool enabled = false;
+  double specific_heat = 0;          ///< c (J/(kg K))
+  double reference_temperature = 0;  ///< T_r (K), the initial temperature
+  double melting_temperature = 0;    ///< T_m (K)
+  double exponent = 1;               ///< q (-)
+  double taylor_quinney = 0.9;       ///< β (-)
+};
+
 struct J2Viscoplastic {
+  /// constitutive_law: j2_viscoplastic: its keys (required ones only with this law), the thermal_softening
+  /// section, the checks across keys, and the law from a material's parameters (correspondence/laws.hpp).
+  static constexpr std::string_view name = "j2_viscoplastic";
+  static std::vector<KeySpec> keys();
+  static std::vector<SectionSpec> sections();
+  static void check(const MapReader& material, const ModelParameters& parameters, DeckContext& context);
+  static J2Viscoplastic from_parameters(const ModelParameters& parameters, const ElasticConstants& elastic,
+                                        double density);
+
   double bulk = 0;                           ///< K (Pa)
   double shear = 0;                          ///< μ (Pa)
   double yield_stress = 0;                   ///< Y, quasi-static yield stress (Pa)
@@ -40,7 +69,7 @@ struct J2Viscoplastic {
   double reference_plastic_strain = 1;       ///< ε0 (-)
   double reference_plastic_strain_rate = 1;  ///< ε̇0 (1/s)
 
-  /// Adiabatic heating and Johnson–Cook thermal softening (materials/correspondence_model.hpp); off when
+  /// Adiabatic heating and Johnson–Cook thermal softening (above); off when
   /// `thermal.enabled` is false. The heating needs the density.
   ThermalSoftening thermal;
   double density = 0;  ///< ρ (kg/m³)

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "peridot/core/error.hpp"
-#include "peridot/materials/material.hpp"
+#include "peridot/neighbor/influence.hpp"
 #include "peridot/core/avx512_gather.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
 #include "peridot/state/bond_runs.hpp"

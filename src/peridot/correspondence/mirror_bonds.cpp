@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "peridot/core/error.hpp"
-#include "peridot/materials/material.hpp"
+#include "peridot/neighbor/influence.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
 
 namespace peridot::correspondence {

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "peridot/correspondence/force.hpp"
 #include "peridot/deck/map_reader.hpp"
 
 // KeySpecs are written with designated initializers that leave the other fields at their defaults on
@@ -15,41 +16,10 @@
 
 namespace peridot {
 
-namespace correspondence {
-
-double hourglass_stiffness(double coefficient, double bulk_modulus, double horizon) {
-  return 18.0 * coefficient * bulk_modulus / (std::numbers::pi * std::pow(horizon, 4));
-}
-
-double hourglass_damping(double coefficient, double density, double bulk_modulus, double horizon) {
-  return 18.0 * coefficient * std::sqrt(density * bulk_modulus) / (std::numbers::pi * std::pow(horizon, 3));
-}
-
-}  // namespace correspondence
-
 CorrespondenceModel::Params CorrespondenceModel::resolve(const MaterialSpec& spec, const Problem&, MaterialParams& block) {
   const ModelParameters& q = spec.parameters;
-  Params p;
-  p.law = q.text("constitutive_law") == "j2_viscoplastic" ? ConstitutiveLawKind::j2_viscoplastic
-                                                           : ConstitutiveLawKind::hypoelastic;
-  p.hourglass_coefficient = q.number("hourglass_coefficient");
-  p.hourglass_viscosity = q.number("hourglass_viscosity");
-  if (p.law == ConstitutiveLawKind::j2_viscoplastic) {
-    p.yield_stress = q.number("yield_stress");
-    p.hardening_exponent = q.number_or("hardening_exponent", std::numeric_limits<double>::infinity());
-    p.reference_plastic_strain = q.number_or("reference_plastic_strain", 1);
-    p.rate_exponent = q.number_or("rate_exponent", std::numeric_limits<double>::infinity());
-    p.reference_strain_rate = q.number_or("reference_strain_rate", 1);
-    if (q.has("thermal_softening.taylor_quinney_coefficient")) {  // defaulted: there when the section is
-      ThermalSoftening& t = p.thermal;
-      t.enabled = true;
-      t.specific_heat = q.number("thermal_softening.specific_heat");
-      t.reference_temperature = q.number("thermal_softening.reference_temperature");
-      t.melting_temperature = q.number("thermal_softening.melting_temperature");
-      t.exponent = q.number("thermal_softening.exponent");
-      t.taylor_quinney = q.number("thermal_softening.taylor_quinney_coefficient");
-    }
-  }
+  Params p{correspondence::make_law(q.text("constitutive_law"), q, spec.elastic, spec.density),
+           q.number("hourglass_coefficient"), q.number("hourglass_viscosity")};
   // Stable time step (docs/models/correspondence.md): the Silling–Askari bound of the PMB solid with the
   // same P-wave modulus M = K + 4G/3 (a PMB solid, ν = 1/4, has M = 1.8K), but never less stiff than the
   // PMB solid of the same K, plus the hourglass bond stiffness c_hg = 18 C_HG K/(πδ⁴) (force.hpp):
@@ -61,43 +31,71 @@ CorrespondenceModel::Params CorrespondenceModel::resolve(const MaterialSpec& spe
   return p;
 }
 
+namespace {
+
+bool has_key(const std::vector<KeySpec>& keys, std::string_view key) {
+  return std::any_of(keys.begin(), keys.end(), [&](const KeySpec& k) { return k.key == key; });
+}
+
+}  // namespace
+
 void CorrespondenceModel::check(const MapReader& r, const ModelParameters& q, DeckContext& ctx) {
   if (r.given("damage"))
     ctx.error(r["damage"].key_pos, r.path_of("damage"),
               "the correspondence model has no bond failure yet; remove damage (broken bonds would leave K, F "
               "and the force state without a failure criterion)");
-  const bool j2 = r["constitutive_law"].text == "j2_viscoplastic";
-  static constexpr std::string_view j2_keys[] = {"yield_stress", "hardening_exponent", "reference_plastic_strain",
-                                                 "rate_exponent", "reference_strain_rate", "thermal_softening"};
-  if (!j2) {
-    for (std::string_view key : j2_keys)
-      if (r.given(key))
-        ctx.error(r[key].key_pos, r.path_of(key),
-                  fmt::format("{} is a parameter of constitutive_law: j2_viscoplastic, not of hypoelastic", key));
-    return;
-  }
-  if (!r.present("yield_stress"))
-    ctx.error(r["constitutive_law"].pos, r.path(), "constitutive_law: j2_viscoplastic needs yield_stress");
-  // An exponent and its reference value come together: (1 + εp/ε0)^(1/n), (1 + ε̇p/ε̇0)^(1/m).
-  for (auto [exponent, reference] : {std::pair<std::string_view, std::string_view>{"hardening_exponent", "reference_plastic_strain"},
-                                     {"rate_exponent", "reference_strain_rate"}})
-    if (r.present(exponent) != r.present(reference)) {
-      std::string_view given = r.present(exponent) ? exponent : reference;
-      if (r.given(given))
-        ctx.error(r[given].key_pos, r.path_of(given),
-                  fmt::format("{} and {} go together; give both or neither", exponent, reference));
-    }
-  const ModelParameters::Entry* reference = q.find("thermal_softening.reference_temperature");
-  const ModelParameters::Entry* melting = q.find("thermal_softening.melting_temperature");
-  if (reference && melting && !(melting->number > reference->number))
-    ctx.error(melting->pos, r.path_of("thermal_softening") + ".melting_temperature",
-              fmt::format("melting_temperature ({:g} K) must be above reference_temperature ({:g} K)",
-                          melting->number, reference->number));
+  if (!r.given("constitutive_law")) return;  // missing or not a listed law: reported
+  const std::string chosen = r["constitutive_law"].text;
+  std::vector<KeySpec> own;
+  correspondence::ConstitutiveLaws::for_each([&](auto law) {
+    if (decltype(law)::name == chosen) own = decltype(law)::keys();
+  });
+  // A key of another law only (reported once, with the first law that has it).
+  std::vector<std::string_view> reported;
+  correspondence::ConstitutiveLaws::for_each([&](auto law) {
+    using Law = decltype(law);
+    if (Law::name == chosen) return;
+    for (const KeySpec& k : Law::keys())
+      if (r.given(k.key) && !has_key(own, k.key) &&
+          std::find(reported.begin(), reported.end(), k.key) == reported.end()) {
+        reported.push_back(k.key);
+        ctx.error(r[k.key].key_pos, r.path_of(k.key),
+                  fmt::format("{} is a parameter of constitutive_law: {}, not of {}", k.key, Law::name, chosen));
+      }
+  });
+  for (const KeySpec& k : own)
+    if (k.required && !r.present(k.key))
+      ctx.error(r["constitutive_law"].pos, r.path(), fmt::format("constitutive_law: {} needs {}", chosen, k.key));
+  correspondence::ConstitutiveLaws::for_each([&](auto law) {
+    using Law = decltype(law);
+    if constexpr (requires { &Law::check; })
+      if (Law::name == chosen) Law::check(r, q, ctx);
+  });
 }
 
 // The page of `peridot info --model correspondence` (docs/models/correspondence.md). The equations restate
 // the header comments of correspondence/; keep them in step with the code.
 ModelInfo CorrespondenceModel::info() {
+  std::vector<std::string_view> laws = correspondence::law_names();
+  std::vector<KeySpec> keys = {
+      {.key = "constitutive_law", .type = ValueType::choice, .description = "the law in the unrotated frame",
+       .required = true, .choices = laws},
+      {.key = "hourglass_coefficient", .default_yaml = "0.05", .range = non_negative,
+       .description = "C_HG (-): hourglass bond stiffness 18 C_HG K/(πδ⁴); 0 = no control"},
+      {.key = "hourglass_viscosity", .default_yaml = "0", .range = non_negative,
+       .description = "C_HV (-): viscous hourglass damping, a bond dashpot 18 C_HV √(ρK)/(πδ³) on the non-affine "
+                      "stretch rate; 0 = none (elastic control only)"}};
+  std::vector<SectionSpec> sections;
+  correspondence::ConstitutiveLaws::for_each([&](auto law) {
+    using Law = decltype(law);
+    for (KeySpec k : Law::keys())  // required only with its law: CorrespondenceModel::check
+      if (!has_key(keys, k.key)) {
+        k.required = false;
+        keys.push_back(k);
+      }
+    if constexpr (requires { Law::sections(); })
+      for (const SectionSpec& section : Law::sections()) sections.push_back(section);
+  });
   ModelDoc doc{
     .summary = R"(A non-ordinary state-based (correspondence) solid: each point's family gives it a nonlocal deformation
 gradient F, a classical constitutive law turns the motion into a Cauchy stress, and the first Piola–Kirchhoff
@@ -172,39 +170,9 @@ the Taylor example, aluminium at δ = 3.015Δx with C_HV = 0.05). It is an estim
       .name = name,
       .description = "non-ordinary state-based (correspondence) solid: hypoelastic or J2 viscoplastic law, hourglass control",
       .reference = "Foster, Silling & Chen, IJNME 81 (2010) 1242-1258",
-      // In the order the resolved deck writes them (the law, its hourglass control, then the J2 keys).
-      .keys = {{.key = "constitutive_law", .type = ValueType::choice, .description = "the law in the unrotated frame",
-                .required = true, .choices = {"hypoelastic", "j2_viscoplastic"}},
-               {.key = "hourglass_coefficient", .default_yaml = "0.05", .range = non_negative,
-                .description = "C_HG (-): hourglass bond stiffness 18 C_HG K/(πδ⁴); 0 = no control"},
-               {.key = "hourglass_viscosity", .default_yaml = "0", .range = non_negative,
-                .description = "C_HV (-): viscous hourglass damping, a bond dashpot 18 C_HV √(ρK)/(πδ³) on the non-affine "
-                               "stretch rate; 0 = none (elastic control only)"},
-               {.key = "yield_stress", .unit = Unit::pressure, .range = positive,
-                .description = "Y (Pa), quasi-static yield stress; j2_viscoplastic (required there)"},
-               {.key = "hardening_exponent", .range = positive,
-                .description = "n (-): G ∝ (1 + εp/ε0)^(1/n); j2_viscoplastic; omit for no strain hardening"},
-               {.key = "reference_plastic_strain", .range = positive,
-                .description = "ε0 (-), with hardening_exponent; j2_viscoplastic"},
-               {.key = "rate_exponent", .range = positive,
-                .description = "m (-): G ∝ (1 + ε̇p/ε̇0)^(1/m); j2_viscoplastic; omit for rate independence"},
-               {.key = "reference_strain_rate", .unit = Unit::rate, .range = positive,
-                .description = "ε̇0 (1/s), with rate_exponent; j2_viscoplastic"},
-               {.key = "thermal_softening", .type = ValueType::mapping,
-                .description = "adiabatic heating and Johnson–Cook thermal softening (see materials.<name>.thermal_softening); "
-                               "j2_viscoplastic; omit for none"}},
-      .sections = {{"materials.<name>.thermal_softening",
-                    "adiabatic heating and Johnson–Cook thermal softening of constitutive_law: j2_viscoplastic; omit for none",
-                    {{.key = "specific_heat", .unit = Unit::specific_heat, .range = positive,
-       .description = "c (J/(kg K)), specific heat at constant pressure", .required = true},
-      {.key = "reference_temperature", .unit = Unit::temperature, .range = positive,
-       .description = "T_r (K): the initial temperature, where the thermal factor is 1", .required = true},
-      {.key = "melting_temperature", .unit = Unit::temperature, .range = positive,
-       .description = "T_m (K): the thermal factor is 0 there; above reference_temperature", .required = true},
-      {.key = "exponent", .range = positive, .description = "q (-): thermal factor 1 − T*^q, Johnson–Cook's m",
-       .required = true},
-      {.key = "taylor_quinney_coefficient", .default_yaml = "0.9", .range = {0, 1, false, false},
-       .description = "β (-): share of the plastic work that heats the point"}}}},
+      // In the order the resolved deck writes them: the law, its hourglass control, then the laws' keys.
+      .keys = keys,
+      .sections = sections,
       .doc = doc,
       .dimension = 3,
       .check = &CorrespondenceModel::check,

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "peridot/deck/problem.hpp"
+#include "peridot/neighbor/influence.hpp"
 
 namespace peridot {
 
@@ -63,32 +64,6 @@ double critical_stretch_from_energy(double fracture_energy, const MaterialSpec& 
 /// The 2D bulk modulus K′ = λ′ + G of the in-plane problem: plane strain K + G/3, plane stress
 /// 9KG/(3K + 4G) = E/(2(1 − ν)). (docs/algorithms.md §3)
 double planar_bulk_modulus(const ElasticConstants& c, PlaneKind plane);
-
-/// ω(ξ) = 1, δ/ξ or exp(−ξ²/δ²) for a kind fixed at compile time: what a vectorised bond loop calls (a
-/// run-time switch, with its call to exp, keeps a loop scalar).
-template <InfluenceKind Kind>
-inline double influence_of(double xi, double horizon) {
-  if constexpr (Kind == InfluenceKind::inverse_distance) return horizon / xi;
-  else if constexpr (Kind == InfluenceKind::gaussian) return std::exp(-(xi * xi) / (horizon * horizon));
-  else return 1.0;
-}
-
-/// Runs f(std::integral_constant<InfluenceKind, kind>) for a kind known only at run time.
-template <class F>
-decltype(auto) with_influence(InfluenceKind kind, F&& f) {
-  using K = InfluenceKind;
-  switch (kind) {
-    case K::inverse_distance: return f(std::integral_constant<K, K::inverse_distance>{});
-    case K::gaussian: return f(std::integral_constant<K, K::gaussian>{});
-    case K::constant: break;
-  }
-  return f(std::integral_constant<K, K::constant>{});
-}
-
-/// ω(ξ) for a kind known only at run time.
-inline double influence(InfluenceKind kind, double xi, double horizon) {
-  return with_influence(kind, [&](auto k) { return influence_of<k.value>(xi, horizon); });
-}
 
 /// ∫₀^δ ω(ξ) ξ^p dξ in closed form, for the calibration of the constants (p = 2, 3, 4).
 double influence_moment(InfluenceKind kind, double horizon, int p);

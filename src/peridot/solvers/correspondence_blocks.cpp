@@ -12,9 +12,8 @@
 #include <fmt/format.h>
 
 #include "peridot/correspondence/force.hpp"
-#include "peridot/correspondence/hypoelastic.hpp"
-#include "peridot/correspondence/j2_viscoplastic.hpp"
 #include "peridot/correspondence/kinematics.hpp"
+#include "peridot/correspondence/laws.hpp"
 #include "peridot/materials/models.hpp"
 #include "peridot/solvers/simulation.hpp"
 
@@ -24,22 +23,18 @@ using namespace correspondence;
 
 namespace {
 
-using AnyBlock = std::variant<CorrespondenceBlock<Hypoelastic>, CorrespondenceBlock<J2Viscoplastic>>;
+/// One block type per listed law (correspondence/laws.hpp).
+template <class>
+struct BlocksOf;
+template <class... Laws>
+struct BlocksOf<std::variant<Laws...>> {
+  using type = std::variant<CorrespondenceBlock<Laws>...>;
+};
+using AnyBlock = BlocksOf<AnyLaw>::type;
 
-AnyBlock make_block(const MaterialParams& block, const CorrespondenceModel::Params& p, BlockRange range) {
-  const double K = block.elastic.bulk_modulus, G = block.elastic.shear_modulus;
-  if (p.law == ConstitutiveLawKind::hypoelastic) return CorrespondenceBlock<Hypoelastic>({K, G}, range);
-  J2Viscoplastic law;
-  law.bulk = K;
-  law.shear = G;
-  law.yield_stress = p.yield_stress;
-  law.hardening_exponent = p.hardening_exponent;
-  law.rate_exponent = p.rate_exponent;
-  law.reference_plastic_strain = p.reference_plastic_strain;
-  law.reference_plastic_strain_rate = p.reference_strain_rate;
-  law.thermal = p.thermal;
-  law.density = block.density;
-  return CorrespondenceBlock<J2Viscoplastic>(law, range);
+AnyBlock make_block(const CorrespondenceModel::Params& p, BlockRange range) {
+  return std::visit([&](const auto& law) -> AnyBlock { return CorrespondenceBlock<std::decay_t<decltype(law)>>(law, range); },
+                    p.law);
 }
 
 /// Refuses a bond between a correspondence block and a block of another model (see the header).
@@ -103,7 +98,7 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
     geometry.push_back({p.horizon, p.influence});
     // A block with no point on this rank still takes part: its ghosts' exchange is collective.
     if (!is_model<CorrespondenceModel>(p)) continue;
-    m.blocks.push_back(make_block(p, model.model_params_of<CorrespondenceModel>(b), model.ranges[b]));
+    m.blocks.push_back(make_block(model.model_params_of<CorrespondenceModel>(b), model.ranges[b]));
     m.block_index.push_back(b);
   }
   if (m.blocks.empty()) return;
@@ -323,7 +318,11 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
 
 bool any_thermal_softening(const ModelContext& model) {
   for (std::size_t b = 0; b < model.params.size(); ++b)
-    if (is_model<CorrespondenceModel>(model.params[b]) && model.model_params_of<CorrespondenceModel>(b).thermal.enabled)
+    if (is_model<CorrespondenceModel>(model.params[b]) &&
+        std::visit([](const auto& law) {
+          if constexpr (requires { law.thermal.enabled; }) return law.thermal.enabled;
+          else return false;
+        }, model.model_params_of<CorrespondenceModel>(b).law))
       return true;
   return false;
 }
