@@ -11,7 +11,7 @@
 
 #include "peridot/core/error.hpp"
 #include "peridot/core/vec3.hpp"
-#include "peridot/geometry/shape.hpp"
+#include "peridot/core/shape.hpp"
 
 namespace peridot {
 

@@ -1,4 +1,4 @@
-#include "peridot/geometry/shape.hpp"
+#include "peridot/core/shape.hpp"
 
 #include <algorithm>
 #include <limits>
