@@ -107,9 +107,8 @@ std::vector<KeySpec> J2Viscoplastic::keys() {
 }
 
 std::vector<SectionSpec> J2Viscoplastic::sections() {
-  return {{"materials.<name>.thermal_softening",
-           "adiabatic heating and Johnson–Cook thermal softening of constitutive_law: j2_viscoplastic; omit for none",
-           {{.key = "specific_heat", .unit = Unit::specific_heat, .range = positive,
+  std::vector<KeySpec> thermal = {
+      {.key = "specific_heat", .unit = Unit::specific_heat, .range = positive,
        .description = "c (J/(kg K)), specific heat at constant pressure", .required = true},
       {.key = "reference_temperature", .unit = Unit::temperature, .range = positive,
        .description = "T_r (K): the initial temperature, where the thermal factor is 1", .required = true},
@@ -118,7 +117,10 @@ std::vector<SectionSpec> J2Viscoplastic::sections() {
       {.key = "exponent", .range = positive, .description = "q (-): thermal factor 1 − T*^q, Johnson–Cook's m",
        .required = true},
       {.key = "taylor_quinney_coefficient", .default_yaml = "0.9", .range = {0, 1, false, false},
-       .description = "β (-): share of the plastic work that heats the point"}}}};
+       .description = "β (-): share of the plastic work that heats the point"}};
+  return {{"materials.<name>.thermal_softening",
+           "adiabatic heating and Johnson–Cook thermal softening of constitutive_law: j2_viscoplastic; omit for none",
+           std::move(thermal)}};
 }
 
 void J2Viscoplastic::check(const MapReader& r, const ModelParameters& q, DeckContext& ctx) {

@@ -32,7 +32,6 @@ struct ModelList {
   }
   static constexpr int most_bond_arrays = std::max({0, Models::bond_history_arrays...});
   static constexpr int most_point_arrays = std::max({0, static_cast<int>(Models::point_arrays.size())...});
-  static constexpr int most_point_constants = std::max({0, Models::point_constant_arrays...});
 };
 
 // clang-format off
