@@ -30,6 +30,8 @@
 #include <numbers>
 #include <string>
 
+#include "peridot/deck/model_schema.hpp"
+#include "peridot/deck/solver_schema.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/simulation.hpp"
 
@@ -91,7 +93,7 @@ Problem benchmark_problem(const Options& o) {
   MaterialSpec m;
   m.name = "steel";
   m.model = find_model(o.model) ? o.model : "pmb";
-  ModelParameters& q = m.parameters;  // the keys of the chosen model (each model reads its own)
+  Parameters& q = m.parameters;  // the keys of the chosen model (each model reads its own)
   if (m.model == "correspondence") {
     const bool j2 = o.law != "hypoelastic";
     q.set_text("constitutive_law", j2 ? "j2_viscoplastic" : "hypoelastic");
@@ -138,8 +140,9 @@ Problem benchmark_problem(const Options& o) {
   ic.component[1] = Expression{v0 + "*(" + term("y", 1) + "+0.5*" + term("z", 2) + ")", {}, false};
   ic.component[2] = Expression{v0 + "*(" + term("z", 2) + "+0.5*" + term("x", 0) + ")", {}, false};
   p.initial_conditions = {ic};
-  p.solver.num_steps = o.steps;
-  if (o.dt > 0) p.solver.time_step = o.dt;
+  p.solver.parameters = complete_parameters(find_solver("explicit")->keys, {});  // the defaults a deck gets
+  p.solver.parameters.set_integer("num_steps", o.steps);
+  if (o.dt > 0) p.solver.parameters.set_number("time_step", o.dt);
   p.output.progress = false;
   return p;
 }

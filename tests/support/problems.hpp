@@ -5,6 +5,7 @@
 
 #include "peridot/deck/model_schema.hpp"
 #include "peridot/deck/problem.hpp"
+#include "peridot/deck/solver_schema.hpp"
 
 namespace peridot::testing {
 
@@ -21,24 +22,24 @@ struct BlockSetup {
   double jitter = 0;
   bool partial_volume = false;
   /// The model's own keys (SI); box_problem adds the schema's default of every key not given here.
-  ModelParameters parameters;
+  Parameters parameters;
 };
 
 /// `given` and the default of every other key of the model (as the deck parser does).
-inline ModelParameters with_defaults(const std::string& model, const ModelParameters& given) {
+inline Parameters with_defaults(const std::string& model, const Parameters& given) {
   const ModelInfo* info = find_model(model);
   PERIDOT_REQUIRE(info, "unknown model " + model);
-  ModelParameters all;
-  for (const KeySpec& k : info->keys) {
-    if (const ModelParameters::Entry* e = given.find(k.key)) {
-      if (e->is_text) all.set_text(e->key, e->text);
-      else all.set_number(e->key, e->number);
-    } else if (!k.default_yaml.empty()) {
-      if (k.type == ValueType::choice || k.type == ValueType::text) all.set_text(std::string(k.key), std::string(k.default_yaml));
-      else all.set_number(std::string(k.key), *parse_quantity(k.default_yaml, k.unit).value);
-    }
-  }
-  return all;
+  return complete_parameters(info->keys, given);
+}
+
+/// A solver section of this type with every default filled in (add end_time or num_steps for explicit).
+inline SolverSpec solver_spec(const std::string& type = "explicit") {
+  const SolverInfo* info = find_solver(type);
+  PERIDOT_REQUIRE(info, "unknown solver type " + type);
+  SolverSpec spec;
+  spec.type = type;
+  spec.parameters = complete_parameters(info->keys, {});
+  return spec;
 }
 
 /// A box of lattice points [0, n·Δx] with one material, no loads, a handful of steps.
@@ -78,7 +79,8 @@ inline Problem box_problem(const BlockSetup& s) {
   b.horizon = s.horizon_factor * s.spacing;
   p.bodies.push_back(b);
 
-  p.solver.num_steps = 10;
+  p.solver = solver_spec();
+  p.solver.parameters.set_integer("num_steps", 10);
   p.output.exodus_every = 0;
   p.output.history_every = 0;
   p.output.progress = false;

@@ -203,9 +203,9 @@ TEST(Deck, Parses2DDeckWithUnitsAndDefaults) {
   ASSERT_EQ(p.body_forces.size(), 1u);
   EXPECT_TRUE(p.body_forces[0].node_set.empty());
 
-  EXPECT_DOUBLE_EQ(*p.solver.end_time, 1e-4);
-  EXPECT_FALSE(p.solver.num_steps);
-  EXPECT_DOUBLE_EQ(p.solver.safety_factor, 0.7);
+  EXPECT_DOUBLE_EQ(p.solver.parameters.number("end_time"), 1e-4);
+  EXPECT_FALSE(p.solver.parameters.has("num_steps"));
+  EXPECT_DOUBLE_EQ(p.solver.parameters.number("safety_factor"), 0.7);
   EXPECT_EQ(p.output.directory, (fs::absolute(test_dir()) / "out").lexically_normal().string());
   EXPECT_EQ(p.output.exodus_every, 100);
   EXPECT_EQ(p.output.exodus_file, "results.e");
@@ -258,9 +258,9 @@ TEST(Deck, Parses3DDeckWithShapesAndPmbImpliedPoisson) {
   EXPECT_DOUBLE_EQ(p.precracks[0].edge2.y, 0.02);
   ASSERT_EQ(p.boundary_conditions.size(), 3u);
   EXPECT_EQ(p.boundary_conditions[2].component, 2);
-  EXPECT_EQ(*p.solver.num_steps, 500);
-  EXPECT_DOUBLE_EQ(*p.solver.time_step, 1e-8);
-  EXPECT_DOUBLE_EQ(p.solver.safety_factor, 0.8);
+  EXPECT_EQ(p.solver.parameters.integer("num_steps"), 500);
+  EXPECT_DOUBLE_EQ(p.solver.parameters.number("time_step"), 1e-8);
+  EXPECT_DOUBLE_EQ(p.solver.parameters.number("safety_factor"), 0.8);
   EXPECT_EQ(p.output.exodus_every, 0);  // no output section: defaults, nothing written but progress
   EXPECT_EQ(p.output.directory, (fs::absolute(test_dir()) / "output").lexically_normal().string());
 }
@@ -409,7 +409,7 @@ TEST(Deck, UnitsConvertAndWrongDimensionIsAnError) {
   std::string unitless = replaced(deck_2d, "safety_factor: 0.7", "safety_factor: 0.7 s");
   expect_error(unitless, position_of(unitless, "0.7 s"), "takes no unit");
   Problem p = parse(replaced(deck_2d, "end_time: 100 us", "end_time: 2.5ms"));
-  EXPECT_DOUBLE_EQ(*p.solver.end_time, 2.5e-3);
+  EXPECT_DOUBLE_EQ(p.solver.parameters.number("end_time"), 2.5e-3);
 }
 
 TEST(Deck, OutOfRange) {

@@ -51,9 +51,9 @@ Problem bar_problem(int nx, int n, int load_steps, std::string model = "lps", do
     p.boundary_conditions.push_back({{}, Kind::displacement, grip_set, 2, Expression{contraction + " * z", {}, false}});
   }
   p.solver = SolverSpec{};
-  p.solver.kind = SolverKind::relaxation;
-  p.solver.load_steps = load_steps;
-  p.solver.tolerance = 1e-9;
+  p.solver = testing::solver_spec("relaxation");
+  p.solver.parameters.set_integer("load_steps", load_steps);
+  p.solver.parameters.set_number("tolerance", 1e-9);
   return p;
 }
 
@@ -130,8 +130,8 @@ TEST(DynamicRelaxation, ViscoelasticBarRelaxesInRealTime) {
     Problem p = bar_problem(16, 7, load_steps, "lps_viscoelastic");
     p.materials[0].parameters.set_number("relaxing_fraction", lambda);
     p.materials[0].parameters.set_number("relaxation_time", tau);
-    p.solver.ramp = false;  // the stretch is held from the first load step on
-    p.solver.end_time = end_time;
+    p.solver.parameters.set_boolean("ramp", false);  // the stretch is held from the first load step on
+    p.solver.parameters.set_number("end_time", end_time);
     return p;
   };
   const auto glassy = solve(bar_problem(16, 7, 1)), relaxed = solve(bar_problem(16, 7, 1, "lps", 1 - lambda));
@@ -166,7 +166,7 @@ TEST(DynamicRelaxation, BodyForceIsCarriedByTheSupportInEveryLoadStep) {
   // A bar held at its left grip (u = 0) under a body force along it, ramped over two load steps: at each
   // equilibrium the support carries the load factor times the weight of the free points, to the tolerance.
   Problem p = bar_problem(16, 7, 2);
-  p.solver.tolerance = 1e-8;
+  p.solver.parameters.set_number("tolerance", 1e-8);
   p.boundary_conditions.erase(std::remove_if(p.boundary_conditions.begin(), p.boundary_conditions.end(),
                                              [](const BoundaryConditionSpec& bc) { return bc.node_set == "right"; }),
                               p.boundary_conditions.end());
@@ -196,7 +196,7 @@ TEST(DynamicRelaxation, BodyForceIsCarriedByTheSupportInEveryLoadStep) {
 
 TEST(DynamicRelaxation, IterationLimitNamesTheResidualReached) {
   Problem p = bar_problem(16, 7, 1);
-  p.solver.max_iterations = 5;
+  p.solver.parameters.set_integer("max_iterations", 5);
   Simulation sim(p);
   sim.initialize();
   try {

@@ -79,8 +79,8 @@ TEST(BarWave, TravelsAtBarSpeed) {
   p.node_sets = {{"end", {}, testing::box_shape({-1, -1, -1}, {2 * s.spacing, 1, 1}), {}, ""}};
   p.boundary_conditions = {{{}, BoundaryConditionSpec::Kind::velocity, "end", 0,
                             Expression{std::to_string(v0) + " * min(t / " + std::to_string(ramp) + ", 1)", {}, true}}};
-  p.solver.num_steps.reset();
-  p.solver.end_time = 0.33 / c + ramp;
+  p.solver.parameters.erase("num_steps");
+  p.solver.parameters.set_number("end_time", 0.33 / c + ramp);
   Simulation sim(p);
   const double probes[2] = {0.1005, 0.3005};  // on lattice columns
   double arrival[2] = {-1, -1};
@@ -121,8 +121,8 @@ double energy_drift(double time_step, std::int64_t steps) {
   ic.kind = InitialConditionSpec::Kind::velocity;
   ic.component[0] = Expression{"0.5 * cos(pi * x / " + std::to_string(L) + ")", {}, false};
   p.initial_conditions = {ic};
-  p.solver.time_step = time_step;
-  p.solver.num_steps = steps;
+  p.solver.parameters.set_number("time_step", time_step);
+  p.solver.parameters.set_integer("num_steps", steps);
   Simulation sim(p);
   double initial = -1, drift = 0;
   std::int64_t observed = 0;
@@ -177,9 +177,9 @@ class TwoPoints : public ::testing::TestWithParam<std::string> {
     // (the peak stretch comes at a quarter) with Δt a 2000th of a quarter period.
     const double k = model == "pmb" ? c * volume * volume / spacing : 18 * K * volume / (spacing * spacing);
     const double quarter_period = std::numbers::pi / 2 / std::sqrt(2 * k / (rho * volume));
-    p.solver.num_steps.reset();
-    p.solver.end_time = 2 * quarter_period;
-    p.solver.time_step = quarter_period / 2000;
+    p.solver.parameters.erase("num_steps");
+    p.solver.parameters.set_number("end_time", 2 * quarter_period);
+    p.solver.parameters.set_number("time_step", quarter_period / 2000);
     Simulation sim(p);
     sim.initialize();
     while (sim.state().step < sim.total_steps()) sim.step();
@@ -222,8 +222,8 @@ TEST(EnergyBalance, ExternalWorkAccountsForBoundaryConditionsAndBodyForces) {
   BodyForceSpec gravity;
   gravity.component[1] = Expression{"-1e8 * (1 + cos(1e6 * t))", {}, true};
   p.body_forces = {gravity};
-  p.solver.num_steps = 3000;
-  p.solver.safety_factor = 0.5;
+  p.solver.parameters.set_integer("num_steps", 3000);
+  p.solver.parameters.set_number("safety_factor", 0.5);
   Simulation sim(p);
   double worst = 0, scale = 0;
   run(sim, [&] {

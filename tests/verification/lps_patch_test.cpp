@@ -186,10 +186,10 @@ TEST(LpsBar, ContractsLaterallyByPoissonRatio) {
   };
   p.boundary_conditions = {{{}, BoundaryConditionSpec::Kind::displacement, "left", 0, ramp(-1)},
                            {{}, BoundaryConditionSpec::Kind::displacement, "right", 0, ramp(+1)}};
-  p.solver.num_steps.reset();
-  p.solver.end_time = 400e-6;
-  p.solver.safety_factor = 0.9;
-  p.solver.damping = 1.5e5;
+  p.solver.parameters.erase("num_steps");
+  p.solver.parameters.set_number("end_time", 400e-6);
+  p.solver.parameters.set_number("safety_factor", 0.9);
+  p.solver.parameters.set_number("damping", 1.5e5);
   Simulation sim(p);
   sim.initialize();
   while (sim.state().step < sim.total_steps()) sim.step();

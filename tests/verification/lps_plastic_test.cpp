@@ -337,8 +337,8 @@ std::vector<BarPoint> pull_bar(const testing::BlockSetup& s, double max_strain, 
   right.shape = testing::box_shape({L - grip, -1, -1}, {1, 1, 1});
   problem.node_sets = {left, right};
   const double dt = 0.8 * Simulation(problem).stable_time_step();
-  problem.solver.time_step = dt;
-  problem.solver.num_steps = steps;
+  problem.solver.parameters.set_number("time_step", dt);
+  problem.solver.parameters.set_integer("num_steps", steps);
   // Axial grip displacement: up to max_strain over the first 3/4 of the run, then back to end_strain.
   const double T1 = 0.75 * steps * dt, T2 = steps * dt, span = L - grip;
   const std::string ramp = fmt::format("(t <= {0:.17g} ? t / {0:.17g} * {2:.17g} : {2:.17g} - (t - {0:.17g}) / {1:.17g} * {3:.17g})",
@@ -353,7 +353,7 @@ std::vector<BarPoint> pull_bar(const testing::BlockSetup& s, double max_strain, 
   problem.boundary_conditions = {hold, pull};
   // Damping near the bar's first axial frequency π c/L, so that the loading stays quasi-static.
   const double E = 9 * s.bulk_modulus * s.shear_modulus / (3 * s.bulk_modulus + s.shear_modulus);
-  problem.solver.damping = std::numbers::pi * std::sqrt(E / s.density) / L;
+  problem.solver.parameters.set_number("damping", std::numbers::pi * std::sqrt(E / s.density) / L);
   Simulation sim(problem);
   sim.initialize();
   const Discretization& disc = sim.discretization();

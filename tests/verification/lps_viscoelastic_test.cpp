@@ -50,8 +50,8 @@ TEST(LpsViscoelasticRelaxation, HeldShearRelaxesExponentiallyAndDissipatesTheLos
     held.value = expression(d == 0 ? std::to_string(gamma) + " * y" : "0");
     problem.boundary_conditions.push_back(held);
   }
-  problem.solver.time_step = dt;
-  problem.solver.num_steps = 150;
+  problem.solver.parameters.set_number("time_step", dt);
+  problem.solver.parameters.set_integer("num_steps", 150);
   HomogeneousBlock block(s, problem);
   Simulation& sim = block.sim();
   sim.initialize();

@@ -17,7 +17,7 @@ struct Hypoelastic {
   /// constitutive_law: hypoelastic; no keys beyond the elastic constants (correspondence/laws.hpp).
   static constexpr std::string_view name = "hypoelastic";
   static std::vector<KeySpec> keys() { return {}; }
-  static Hypoelastic from_parameters(const ModelParameters&, const ElasticConstants& elastic, double /*density*/) {
+  static Hypoelastic from_parameters(const Parameters&, const ElasticConstants& elastic, double /*density*/) {
     return {elastic.bulk_modulus, elastic.shear_modulus};
   }
 

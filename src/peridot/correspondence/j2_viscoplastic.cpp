@@ -123,7 +123,7 @@ std::vector<SectionSpec> J2Viscoplastic::sections() {
            std::move(thermal)}};
 }
 
-void J2Viscoplastic::check(const MapReader& r, const ModelParameters& q, DeckContext& ctx) {
+void J2Viscoplastic::check(const MapReader& r, const Parameters& q, DeckContext& ctx) {
   // An exponent and its reference value come together: (1 + εp/ε0)^(1/n), (1 + ε̇p/ε̇0)^(1/m).
   for (auto [exponent, reference] : {std::pair<std::string_view, std::string_view>{"hardening_exponent", "reference_plastic_strain"},
                                      {"rate_exponent", "reference_strain_rate"}})
@@ -133,15 +133,15 @@ void J2Viscoplastic::check(const MapReader& r, const ModelParameters& q, DeckCon
         ctx.error(r[given].key_pos, r.path_of(given),
                   fmt::format("{} and {} go together; give both or neither", exponent, reference));
     }
-  const ModelParameters::Entry* reference = q.find("thermal_softening.reference_temperature");
-  const ModelParameters::Entry* melting = q.find("thermal_softening.melting_temperature");
+  const Parameters::Entry* reference = q.find("thermal_softening.reference_temperature");
+  const Parameters::Entry* melting = q.find("thermal_softening.melting_temperature");
   if (reference && melting && !(melting->number > reference->number))
     ctx.error(melting->pos, r.path_of("thermal_softening") + ".melting_temperature",
               fmt::format("melting_temperature ({:g} K) must be above reference_temperature ({:g} K)",
                           melting->number, reference->number));
 }
 
-J2Viscoplastic J2Viscoplastic::from_parameters(const ModelParameters& q, const ElasticConstants& elastic, double density) {
+J2Viscoplastic J2Viscoplastic::from_parameters(const Parameters& q, const ElasticConstants& elastic, double density) {
   J2Viscoplastic law;
   law.bulk = elastic.bulk_modulus;
   law.shear = elastic.shear_modulus;

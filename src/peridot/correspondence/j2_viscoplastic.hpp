@@ -57,8 +57,8 @@ struct J2Viscoplastic {
   static constexpr std::string_view name = "j2_viscoplastic";
   static std::vector<KeySpec> keys();
   static std::vector<SectionSpec> sections();
-  static void check(const MapReader& material, const ModelParameters& parameters, DeckContext& context);
-  static J2Viscoplastic from_parameters(const ModelParameters& parameters, const ElasticConstants& elastic,
+  static void check(const MapReader& material, const Parameters& parameters, DeckContext& context);
+  static J2Viscoplastic from_parameters(const Parameters& parameters, const ElasticConstants& elastic,
                                         double density);
 
   double bulk = 0;                           ///< K (Pa)

@@ -13,7 +13,7 @@ std::vector<std::string_view> law_names() {
   return names;
 }
 
-AnyLaw make_law(std::string_view name, const ModelParameters& parameters, const ElasticConstants& elastic,
+AnyLaw make_law(std::string_view name, const Parameters& parameters, const ElasticConstants& elastic,
                 double density) {
   std::optional<AnyLaw> made;
   ConstitutiveLaws::for_each([&](auto law) {

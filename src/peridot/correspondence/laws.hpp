@@ -37,7 +37,7 @@ using AnyLaw = ConstitutiveLaws::Any;
 std::vector<std::string_view> law_names();
 /// The law `name` built from a material's parameters; a programming error when no law has the name (the
 /// deck's choice list holds only listed names).
-AnyLaw make_law(std::string_view name, const ModelParameters& parameters, const ElasticConstants& elastic,
+AnyLaw make_law(std::string_view name, const Parameters& parameters, const ElasticConstants& elastic,
                 double density);
 
 }  // namespace peridot::correspondence

@@ -16,6 +16,7 @@
 
 #include "peridot/deck/map_reader.hpp"
 #include "peridot/deck/model_schema.hpp"
+#include "peridot/deck/solver_schema.hpp"
 
 namespace peridot {
 
@@ -154,7 +155,7 @@ struct Parser {
                                                     : InfluenceKind::constant;
       if (model) m.elastic = resolve_elastic(r, *model);
       if (r.given("damage")) m.damage = parse_damage(r["damage"], r.path_of("damage"));
-      if (model) read_model_parameters(r, *model, m.parameters);
+      if (model) read_parameters(r, model->keys, model->sections, m.parameters);
       if (model && model->dimension != 0 && model->dimension != p.dimension)
         ctx.error(r["model"].pos, r.path_of("model"),
                   fmt::format("model {} is implemented in {}D only (discretization.dimension: {})", model->name,
@@ -164,29 +165,28 @@ struct Parser {
     });
   }
 
-  /// The model's own keys (ModelInfo::keys), valid values and defaults, into `parameters`; a mapping key
-  /// is read with its section's table (ModelInfo::sections) and stored as "KEY.SUBKEY".
-  void read_model_parameters(const MapReader& r, const ModelInfo& model, ModelParameters& parameters,
-                             const std::vector<KeySpec>* keys = nullptr, const std::string& prefix = "") {
-    for (const KeySpec& k : keys ? *keys : model.keys) {
+  /// A model's or solver's own keys, valid values and defaults, into `parameters`; a mapping key is read
+  /// with its section's table (path "materials.<name>.KEY") and stored as "KEY.SUBKEY".
+  void read_parameters(const MapReader& r, const std::vector<KeySpec>& keys, const std::vector<SectionSpec>& sections,
+                       Parameters& parameters, const std::string& prefix = "") {
+    for (const KeySpec& k : keys) {
       const std::string name = prefix + std::string(k.key);
       if (k.type == ValueType::mapping) {
         if (!r.given(k.key)) continue;
         const std::string path = fmt::format("materials.<name>.{}", k.key);
-        const auto section = std::find_if(model.sections.begin(), model.sections.end(),
-                                          [&](const SectionSpec& s) { return s.path == path; });
-        PERIDOT_REQUIRE(section != model.sections.end(), "model " + std::string(model.name) + " lacks the section " + path);
+        const auto section = std::find_if(sections.begin(), sections.end(), [&](const SectionSpec& s) { return s.path == path; });
+        PERIDOT_REQUIRE(section != sections.end(), "no table for the section " + path);
         const Value& v = r[k.key];
         MapReader nested(ctx, v.node, v.key_pos, r.path_of(k.key), section->keys);
-        read_model_parameters(nested, model, parameters, &section->keys, name + ".");
+        read_parameters(nested, section->keys, sections, parameters, name + ".");
         continue;
       }
       if (!r.given(k.key) && k.default_yaml.empty()) continue;  // absent, or invalid (reported)
       const Value& v = r[k.key];
       const SourcePos pos = r.given(k.key) ? v.pos : r.owner();
       if (k.type == ValueType::choice || k.type == ValueType::text) parameters.set_text(name, v.text, pos);
-      else if (k.type == ValueType::integer) parameters.set_number(name, static_cast<double>(v.integer), pos);
-      else if (k.type == ValueType::boolean) parameters.set_number(name, v.boolean ? 1.0 : 0.0, pos);
+      else if (k.type == ValueType::integer) parameters.set_integer(name, v.integer, pos);
+      else if (k.type == ValueType::boolean) parameters.set_boolean(name, v.boolean, pos);
       else parameters.set_number(name, v.number, pos);
     }
   }
@@ -516,45 +516,16 @@ struct Parser {
 
   // -- solver and output -------------------------------------------------------------------------
 
+  /// The type's keys (deck/solver_schema.hpp) into p.solver.parameters; an unknown type is reported by the
+  /// reader (the keys of the default type are then read).
   void parse_solver(const Value& v) {
     p.solver.pos = v.key_pos;
     const YAML::Node type = v.node.IsMap() ? v.node["type"] : YAML::Node();
-    if (type && type.IsScalar() && type.Scalar() == "relaxation") {
-      MapReader r(ctx, v.node, v.key_pos, "solver", deck_section("solver (type: relaxation)").keys);
-      p.solver.kind = SolverKind::relaxation;
-      p.solver.end_time = r["end_time"].number;
-      p.solver.load_steps = r["load_steps"].integer;
-      p.solver.ramp = r["ramp"].boolean;
-      p.solver.tolerance = r["tolerance"].number;
-      p.solver.max_iterations = r["max_iterations"].integer;
-      p.solver.density_factor = r["density_factor"].number;
-      return;
-    }
-    MapReader r(ctx, v.node, v.key_pos, "solver", deck_section("solver").keys);
-    p.solver.end_time = r.optional_number("end_time");
-    if (r.given("num_steps")) p.solver.num_steps = r["num_steps"].integer;
-    p.solver.time_step = r.optional_number("time_step");
-    p.solver.safety_factor = r["safety_factor"].number;
-    p.solver.damping = r["damping"].number;
-  }
-
-  /// What a static solution cannot have: velocities given as initial or boundary conditions.
-  void check_relaxation_loads() {
-    if (p.solver.kind != SolverKind::relaxation) return;
-    for (const InitialConditionSpec& ic : p.initial_conditions)
-      if (ic.kind == InitialConditionSpec::Kind::velocity)
-        ctx.error(ic.pos, "initial_conditions",
-                  "an initial velocity has no meaning for solver type 'relaxation' (static equilibrium); remove it "
-                  "or use the explicit solver");
-    for (const BoundaryConditionSpec& bc : p.boundary_conditions)
-      if (bc.kind == BoundaryConditionSpec::Kind::velocity)
-        ctx.error(bc.pos, "boundary_conditions",
-                  "a prescribed velocity has no meaning for solver type 'relaxation' (static equilibrium); prescribe "
-                  "the displacement instead");
-    for (const RigidWallSpec& w : p.rigid_walls)
-      if (w.speed != 0)
-        ctx.error(w.pos, "rigid_walls." + w.name,
-                  "a moving wall is not supported with solver type 'relaxation'; give it speed 0");
+    const SolverInfo* solver = type && type.IsScalar() ? find_solver(type.Scalar()) : nullptr;
+    if (!solver) solver = &solver_types().front();
+    MapReader r(ctx, v.node, v.key_pos, "solver", solver_keys(*solver));
+    p.solver.type = std::string(solver->name);
+    read_parameters(r, solver->keys, {}, p.solver.parameters);
   }
 
   void parse_output(const Value& v) {
@@ -598,7 +569,7 @@ struct Parser {
     parse_body_forces(r["body_forces"]);
     parse_rigid_walls(r["rigid_walls"]);
     if (r.given("solver")) parse_solver(r["solver"]);
-    check_relaxation_loads();
+    if (const SolverInfo* solver = find_solver(p.solver.type); solver && solver->check) solver->check(p, ctx);
     if (r.given("decomposition")) {
       MapReader d(ctx, r["decomposition"].node, r["decomposition"].key_pos, "decomposition",
                   deck_section("decomposition").keys);

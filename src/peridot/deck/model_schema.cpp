@@ -1,5 +1,7 @@
 #include "peridot/deck/model_schema.hpp"
 
+#include <string>
+
 // KeySpecs are written with designated initializers that leave the other fields at their defaults on
 // purpose; GCC 12 warns about every omitted field regardless.
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -62,6 +64,35 @@ function (equations (4) and (5) of the pmb page):
 
 - (D1) 3D: G0 = (π c0 s0²/2) ∫₀^δ ω ξ⁴ dξ, so s0 = √(5G0/(9Kδ)) for ω = 1
 - (D2) 2D, thickness h: G0 = h c0 s0² ∫₀^δ ω ξ³ dξ, so s0 = √(πG0/(3K′δ)) for ω = 1)";
+}
+
+Parameters complete_parameters(const std::vector<KeySpec>& keys, const Parameters& given) {
+  Parameters all;
+  for (const KeySpec& k : keys) {
+    if (const Parameters::Entry* e = given.find(k.key)) {
+      switch (e->kind) {
+        case Parameters::Kind::text: all.set_text(e->key, e->text, e->pos); break;
+        case Parameters::Kind::integer: all.set_integer(e->key, static_cast<std::int64_t>(e->number), e->pos); break;
+        case Parameters::Kind::boolean: all.set_boolean(e->key, e->number != 0, e->pos); break;
+        case Parameters::Kind::number: all.set_number(e->key, e->number, e->pos); break;
+      }
+      continue;
+    }
+    if (k.default_yaml.empty()) continue;
+    const std::string key(k.key), value(k.default_yaml);
+    switch (k.type) {
+      case ValueType::choice:
+      case ValueType::text: all.set_text(key, value); break;
+      case ValueType::integer: all.set_integer(key, std::stoll(value)); break;
+      case ValueType::boolean: all.set_boolean(key, value == "true"); break;
+      default: {
+        const Quantity q = parse_quantity(value, k.unit);
+        PERIDOT_REQUIRE(q.value.has_value(), "default of " + key + " does not parse: " + q.error);
+        all.set_number(key, *q.value);
+      }
+    }
+  }
+  return all;
 }
 
 double bond_based_poisson_ratio(int dimension, PlaneKind plane) {

@@ -41,7 +41,7 @@ struct ModelInfo {
   int dimension = 0;  ///< 0: 2D and 3D; 3: 3D only (the deck refuses the model in 2D)
   /// Checks across keys that the tables cannot state (a key that only one variant accepts, keys that go
   /// together); reports through the context. Null: none.
-  void (*check)(const MapReader& material, const ModelParameters& parameters, DeckContext& context) = nullptr;
+  void (*check)(const MapReader& material, const Parameters& parameters, DeckContext& context) = nullptr;
 };
 
 /// Every model, in registration order (materials/models.hpp).
@@ -57,6 +57,10 @@ std::vector<KeySpec> material_keys(const ModelInfo& model);
 std::vector<KeySpec> damage_keys();
 /// How critical-stretch damage works, for the model pages (Markdown; the same for every model).
 std::string_view damage_doc();
+
+/// `given` (in its order) and the default of every key of the table it lacks, as the parser fills them in:
+/// for problems built in code (tests, benchmarks). Keys not in the table are dropped.
+Parameters complete_parameters(const std::vector<KeySpec>& keys, const Parameters& given);
 
 /// The Poisson ratio a bond-based model implies: 1/4 in 3D and plane strain, 1/3 in plane stress.
 double bond_based_poisson_ratio(int dimension, PlaneKind plane);

@@ -1,5 +1,7 @@
 #include "peridot/deck/problem.hpp"
 
+#include <algorithm>
+
 namespace peridot {
 
 const MaterialSpec& Problem::material_of(const BodySpec& body) const {
@@ -12,51 +14,64 @@ const MaterialSpec& Problem::material_of(const BodySpec& body) const {
 
 namespace peridot {
 
-ModelParameters::Entry& ModelParameters::slot(std::string key) {
-  for (Entry& e : entries_)
-    if (e.key == key) return e;
-  entries_.push_back({});
-  entries_.back().key = std::move(key);
-  return entries_.back();
+Parameters::Entry& Parameters::slot(std::string key, Kind kind, SourcePos pos) {
+  auto it = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.key == key; });
+  if (it == entries_.end()) {
+    entries_.push_back({});
+    it = entries_.end() - 1;
+    it->key = std::move(key);
+  }
+  it->kind = kind;
+  it->pos = std::move(pos);
+  return *it;
 }
 
-void ModelParameters::set_number(std::string key, double value, SourcePos pos) {
-  Entry& e = slot(std::move(key));
-  e.pos = std::move(pos);
-  e.number = value;
-  e.is_text = false;
+void Parameters::set_number(std::string key, double value, SourcePos pos) {
+  slot(std::move(key), Kind::number, std::move(pos)).number = value;
 }
 
-void ModelParameters::set_text(std::string key, std::string value, SourcePos pos) {
-  Entry& e = slot(std::move(key));
-  e.pos = std::move(pos);
-  e.text = std::move(value);
-  e.is_text = true;
+void Parameters::set_integer(std::string key, std::int64_t value, SourcePos pos) {
+  slot(std::move(key), Kind::integer, std::move(pos)).number = static_cast<double>(value);
 }
 
-const ModelParameters::Entry* ModelParameters::find(std::string_view key) const {
+void Parameters::set_boolean(std::string key, bool value, SourcePos pos) {
+  slot(std::move(key), Kind::boolean, std::move(pos)).number = value ? 1.0 : 0.0;
+}
+
+void Parameters::set_text(std::string key, std::string value, SourcePos pos) {
+  slot(std::move(key), Kind::text, std::move(pos)).text = std::move(value);
+}
+
+const Parameters::Entry* Parameters::find(std::string_view key) const {
   for (const Entry& e : entries_)
     if (e.key == key) return &e;
   return nullptr;
 }
 
-bool ModelParameters::has(std::string_view key) const { return find(key) != nullptr; }
+bool Parameters::has(std::string_view key) const { return find(key) != nullptr; }
 
-double ModelParameters::number(std::string_view key) const {
-  const Entry* e = find(key);
-  PERIDOT_REQUIRE(e && !e->is_text, "model parameter '" + std::string(key) + "' is not a number of this material");
-  return e->number;
+void Parameters::erase(std::string_view key) {
+  std::erase_if(entries_, [&](const Entry& e) { return e.key == key; });
 }
 
-double ModelParameters::number_or(std::string_view key, double fallback) const {
+const Parameters::Entry& Parameters::get(std::string_view key, Kind kind) const {
   const Entry* e = find(key);
-  return e && !e->is_text ? e->number : fallback;
+  static const char* const kinds[] = {"number", "integer", "boolean", "text"};
+  PERIDOT_REQUIRE(e && e->kind == kind,
+                  "parameter '" + std::string(key) + "' is not a " + kinds[static_cast<int>(kind)] + " here");
+  return *e;
 }
 
-const std::string& ModelParameters::text(std::string_view key) const {
+double Parameters::number(std::string_view key) const { return get(key, Kind::number).number; }
+std::int64_t Parameters::integer(std::string_view key) const {
+  return static_cast<std::int64_t>(get(key, Kind::integer).number);
+}
+bool Parameters::boolean(std::string_view key) const { return get(key, Kind::boolean).number != 0; }
+const std::string& Parameters::text(std::string_view key) const { return get(key, Kind::text).text; }
+
+double Parameters::number_or(std::string_view key, double fallback) const {
   const Entry* e = find(key);
-  PERIDOT_REQUIRE(e && e->is_text, "model parameter '" + std::string(key) + "' is not a text of this material");
-  return e->text;
+  return e && e->kind == Kind::number ? e->number : fallback;
 }
 
 }  // namespace peridot

@@ -38,31 +38,40 @@ struct DamageSpec {
   std::optional<double> fracture_energy;   ///< G0 (J/m²); s0 then follows from K, δ (3D/2D formulas)
 };
 
-/// A material model's own parameters (the keys of its ModelInfo, deck/model_schema.hpp), converted to SI:
-/// every valid value the deck gives and every default, in the order of the model's key table. A key of a
-/// nested section is stored as "SECTION.KEY". The model reads them when it resolves its block constants
-/// (materials/NAME.cpp), the resolved deck writes them back in this order.
-class ModelParameters {
+/// A material model's or a solver's own deck keys (its KeySpecs: deck/model_schema.hpp, solver_schema.hpp),
+/// converted to SI: every valid value the deck gives and every default, in the order of the key table. A
+/// key of a nested section is stored as "SECTION.KEY". The model or solver reads them when it sets up
+/// (materials/NAME.cpp, solvers/NAME.cpp); the resolved deck writes them back in this order.
+class Parameters {
  public:
+  enum class Kind { number, integer, boolean, text };
   struct Entry {
     std::string key;
     SourcePos pos;     ///< where the value is (the owner's position for a default)
-    double number = 0;
-    std::string text;  ///< a choice or text value (then is_text)
-    bool is_text = false;
+    Kind kind = Kind::number;
+    double number = 0;  ///< number, integer (exact below 2⁵³) and boolean (0 or 1) values
+    std::string text;   ///< a choice or text value
   };
   void set_number(std::string key, double value, SourcePos pos = {});
+  void set_integer(std::string key, std::int64_t value, SourcePos pos = {});
+  void set_boolean(std::string key, bool value, SourcePos pos = {});
   void set_text(std::string key, std::string value, SourcePos pos = {});
   bool has(std::string_view key) const;
-  /// The number under `key`; a programming error when absent (the schema makes it required or defaulted).
+  void erase(std::string_view key);
+  /// The value under `key`; a programming error when absent or of another kind (the schema makes the key
+  /// required or defaulted, the parser fills it in).
   double number(std::string_view key) const;
-  double number_or(std::string_view key, double fallback) const;
+  std::int64_t integer(std::string_view key) const;
+  bool boolean(std::string_view key) const;
   const std::string& text(std::string_view key) const;
+  /// The number under `key`, or `fallback` where the deck gave none (a key without a default).
+  double number_or(std::string_view key, double fallback) const;
   const Entry* find(std::string_view key) const;
   const std::vector<Entry>& entries() const { return entries_; }
 
  private:
-  Entry& slot(std::string key);
+  Entry& slot(std::string key, Kind kind, SourcePos pos);
+  const Entry& get(std::string_view key, Kind kind) const;
   std::vector<Entry> entries_;
 };
 
@@ -74,7 +83,7 @@ struct MaterialSpec {
   ElasticConstants elastic;
   InfluenceKind influence = InfluenceKind::constant;
   DamageSpec damage;
-  ModelParameters parameters;  ///< the model's own keys
+  Parameters parameters;  ///< the model's own keys
 };
 
 /// Where a body's points come from: a shape filled on the lattice, or a text point file
@@ -149,26 +158,12 @@ struct RigidWallSpec {
   WallContactKind contact = WallContactKind::penalty;
 };
 
-/// The time integrator (solvers/time_integrator.hpp): explicit dynamics (velocity Verlet) or adaptive
-/// dynamic relaxation to static equilibrium in load steps.
-enum class SolverKind { explicit_dynamics, relaxation };
-
+/// The time integrator (solvers/time_integrator.hpp): its type (a name of deck/solver_schema.hpp's
+/// catalogue: explicit, relaxation) and its own keys, which the solver reads (solvers/NAME.cpp).
 struct SolverSpec {
   SourcePos pos;
-  SolverKind kind = SolverKind::explicit_dynamics;
-  std::optional<double> end_time;        ///< s; relaxation: the time of the last load step
-  std::optional<std::int64_t> num_steps;
-  std::optional<double> time_step;       ///< fixed Δt (s); otherwise safety_factor × stable
-  double safety_factor = 0.8;
-  /// Mass-proportional viscous damping c (1/s): free velocities decay as e^{−ct}. 0 = none. Used to
-  /// relax to static equilibrium (quasi-static loading); it removes energy the history does not count.
-  double damping = 0;
-  // Relaxation (solvers/dynamic_relaxation.hpp).
-  std::int64_t load_steps = 1;           ///< equilibria from load factor 1/N to 1
-  bool ramp = true;                      ///< loads scaled by the load factor k/N (else taken as given at t_k)
-  double tolerance = 1e-8;               ///< relative force residual at equilibrium (-)
-  std::int64_t max_iterations = 100000;  ///< per equilibrium
-  double density_factor = 5;             ///< fictitious density = this × the Gerschgorin bound (-)
+  std::string type = "explicit";
+  Parameters parameters;
 };
 
 struct ProbeSpec {

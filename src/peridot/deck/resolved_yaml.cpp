@@ -93,11 +93,20 @@ void emit_discretization(YAML::Emitter& out, const Problem& p) {
   out << YAML::EndMap;
 }
 
+void emit_value(YAML::Emitter& out, const Parameters::Entry& e) {
+  switch (e.kind) {
+    case Parameters::Kind::text: out << e.text; return;
+    case Parameters::Kind::integer: out << static_cast<std::int64_t>(e.number); return;
+    case Parameters::Kind::boolean: out << (e.number != 0); return;
+    case Parameters::Kind::number: out << number(e.number); return;
+  }
+}
+
 /// The model's own parameters (MaterialSpec::parameters, in its key table's order), so that the resolved
 /// deck runs the same model; "SECTION.KEY" entries go into a nested mapping.
 void emit_model_parameters(YAML::Emitter& out, const MaterialSpec& m) {
   std::string open_section;
-  for (const ModelParameters::Entry& e : m.parameters.entries()) {
+  for (const Parameters::Entry& e : m.parameters.entries()) {
     const std::size_t dot = e.key.find('.');
     const std::string section = dot == std::string::npos ? "" : e.key.substr(0, dot);
     if (section != open_section) {
@@ -106,8 +115,7 @@ void emit_model_parameters(YAML::Emitter& out, const MaterialSpec& m) {
       open_section = section;
     }
     out << YAML::Key << (dot == std::string::npos ? e.key : e.key.substr(dot + 1)) << YAML::Value;
-    if (e.is_text) out << e.text;
-    else out << number(e.number);
+    emit_value(out, e);
   }
   if (!open_section.empty()) out << YAML::EndMap;
 }
@@ -246,21 +254,10 @@ void emit_solver_and_output(YAML::Emitter& out, const Problem& p) {
   out << YAML::Key << "method" << YAML::Value << partition[static_cast<int>(p.partition)];
   out << YAML::EndMap;
   out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
-  if (p.solver.kind == SolverKind::relaxation) {
-    out << YAML::Key << "type" << YAML::Value << "relaxation";
-    out << YAML::Key << "load_steps" << YAML::Value << p.solver.load_steps;
-    out << YAML::Key << "end_time" << YAML::Value << number(p.solver.end_time.value_or(1.0));
-    out << YAML::Key << "ramp" << YAML::Value << p.solver.ramp;
-    out << YAML::Key << "tolerance" << YAML::Value << number(p.solver.tolerance);
-    out << YAML::Key << "max_iterations" << YAML::Value << p.solver.max_iterations;
-    out << YAML::Key << "density_factor" << YAML::Value << number(p.solver.density_factor);
-  } else {
-    out << YAML::Key << "type" << YAML::Value << "explicit";
-    if (p.solver.end_time) out << YAML::Key << "end_time" << YAML::Value << number(*p.solver.end_time);
-    if (p.solver.num_steps) out << YAML::Key << "num_steps" << YAML::Value << *p.solver.num_steps;
-    if (p.solver.time_step) out << YAML::Key << "time_step" << YAML::Value << number(*p.solver.time_step);
-    out << YAML::Key << "safety_factor" << YAML::Value << number(p.solver.safety_factor);
-    out << YAML::Key << "damping" << YAML::Value << number(p.solver.damping);
+  out << YAML::Key << "type" << YAML::Value << p.solver.type;
+  for (const Parameters::Entry& e : p.solver.parameters.entries()) {
+    out << YAML::Key << e.key << YAML::Value;
+    emit_value(out, e);
   }
   out << YAML::EndMap;
 

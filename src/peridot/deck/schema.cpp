@@ -13,6 +13,7 @@
 
 #include "peridot/core/error.hpp"
 #include "peridot/deck/model_schema.hpp"
+#include "peridot/deck/solver_schema.hpp"
 #include "peridot/state/point_fields.hpp"
 
 namespace peridot {
@@ -179,12 +180,6 @@ std::vector<std::string_view> probe_choices() {
   return choices;
 }
 
-KeySpec solver_type_key() {
-  return {.key = "type", .type = VT::choice, .default_yaml = "explicit",
-          .description = "explicit: dynamics by velocity Verlet; relaxation: static equilibrium in load steps",
-          .choices = {"explicit", "relaxation"}};
-}
-
 std::vector<SectionSpec> make_sections() {
   std::vector<SectionSpec> s;
   s.push_back({"", "top level of the deck",
@@ -314,43 +309,14 @@ std::vector<SectionSpec> make_sections() {
                                 "must lie on the plane at t = 0 (its nearest points half a spacing from it) and the wall must be "
                                 "at rest",
                  .choices = {"penalty", "symmetry"}}}});
-  s.push_back({"solver", "the solver: explicit dynamics (velocity Verlet, the default) or, with type: relaxation, "
-               "quasi-static load steps (next section)",
-               {solver_type_key(),
-                {.key = "end_time", .unit = Unit::time, .range = positive, .description = "simulated time (s); or num_steps",
-                 .required = true, .one_of = "duration"},
-                {.key = "num_steps", .type = VT::integer, .range = at_least_one, .description = "number of steps; or end_time",
-                 .required = true, .one_of = "duration"},
-                {.key = "time_step", .unit = Unit::time, .range = positive,
-                 .description = "fixed Δt (s); default safety_factor × stable Δt"},
-                {.key = "safety_factor", .default_yaml = "0.8", .range = {0, 1, true, false},
-                 .description = "fraction of the stable time step"},
-                {.key = "damping", .unit = Unit::rate, .default_yaml = "0", .range = {0, infinity, false, true},
-                 .description = "mass-proportional viscous damping c (1/s): free velocities decay as e^(−ct); "
-                                "for relaxing to static equilibrium (the energy it removes is not in the history)"}}});
-  s.push_back({"solver (type: relaxation)",
-               "adaptive dynamic relaxation (Kilic & Madenci 2010) to static equilibrium in load steps; after each "
-               "equilibrium the bonds over their critical stretch break and the step is relaxed again until none "
-               "breaks; one Exodus frame and history row per load step (docs/algorithms.md)",
-               {solver_type_key(),
-                {.key = "load_steps", .type = VT::integer, .default_yaml = "1", .range = at_least_one,
-                 .description = "number of load steps N; step k is solved at t_k = k·end_time/N"},
-                {.key = "end_time", .unit = Unit::time, .default_yaml = "1 s", .range = positive,
-                 .description = "time of the last load step (s): where time-dependent loads are evaluated, and the "
-                                "real time over which viscous and rate-dependent materials relax"},
-                {.key = "ramp", .type = VT::boolean, .default_yaml = "true",
-                 .description = "scale prescribed displacements and body forces by the load factor k/N (false: take "
-                                "them as the expressions give them at t_k)"},
-                {.key = "tolerance", .default_yaml = "1e-8", .range = positive,
-                 .description = "equilibrium when the force residual on the free dofs is at most this fraction of the "
-                                "largest of the support reactions, the applied body force and the step's initial "
-                                "residual (Euclidean norms of f V)"},
-                {.key = "max_iterations", .type = VT::integer, .default_yaml = "100000", .range = at_least_one,
-                 .description = "iterations allowed for one equilibrium; more ends the run with an error naming the "
-                                "residual reached"},
-                {.key = "density_factor", .default_yaml = "5", .range = {1, infinity, false, true},
-                 .description = "fictitious density as a multiple of the Gerschgorin bound ¼ Σ V c/ξ; raise it if the "
-                                "iterations diverge"}}});
+  // Section paths are views: the strings live as long as the table, which is built once.
+  static const std::vector<std::string> solver_paths = [] {
+    std::vector<std::string> paths;
+    for (const SolverInfo& solver : solver_types()) paths.push_back(solver_section_path(solver));
+    return paths;
+  }();
+  for (std::size_t k = 0; k < solver_types().size(); ++k)
+    s.push_back({solver_paths[k], solver_types()[k].description, solver_keys(solver_types()[k])});
   s.push_back({"decomposition", "the split of the points over the ranks of a distributed run (docs/parallel.md); "
                "results are the same bits whatever the split",
                {{.key = "method", .type = VT::choice, .default_yaml = "rcb",

@@ -17,7 +17,7 @@
 namespace peridot {
 
 CorrespondenceModel::Params CorrespondenceModel::resolve(const MaterialSpec& spec, const Problem&, MaterialParams& block) {
-  const ModelParameters& q = spec.parameters;
+  const Parameters& q = spec.parameters;
   Params p{correspondence::make_law(q.text("constitutive_law"), q, spec.elastic, spec.density),
            q.number("hourglass_coefficient"), q.number("hourglass_viscosity")};
   // Stable time step (docs/models/correspondence.md): the Silling–Askari bound of the PMB solid with the
@@ -39,7 +39,7 @@ bool has_key(const std::vector<KeySpec>& keys, std::string_view key) {
 
 }  // namespace
 
-void CorrespondenceModel::check(const MapReader& r, const ModelParameters& q, DeckContext& ctx) {
+void CorrespondenceModel::check(const MapReader& r, const Parameters& q, DeckContext& ctx) {
   if (r.given("damage"))
     ctx.error(r["damage"].key_pos, r.path_of("damage"),
               "the correspondence model has no bond failure yet; remove damage (broken bonds would leave K, F "

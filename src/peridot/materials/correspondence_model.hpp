@@ -25,7 +25,7 @@ struct CorrespondenceModel : ModelBase {
   static Params resolve(const MaterialSpec& spec, const Problem& problem, MaterialParams& block);
   /// What the model cannot do yet, the keys of another law than the chosen one, the chosen law's required
   /// keys, and the chosen law's own checks.
-  static void check(const MapReader& material, const ModelParameters& parameters, DeckContext& context);
+  static void check(const MapReader& material, const Parameters& parameters, DeckContext& context);
 };
 
 }  // namespace peridot

@@ -6,10 +6,65 @@
 
 #include <fmt/format.h>
 
+#include "peridot/deck/map_reader.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/simulation.hpp"
 
+// KeySpecs are written with designated initializers that leave the other fields at their defaults on
+// purpose; GCC 12 warns about every omitted field regardless.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
 namespace peridot {
+
+SolverInfo DynamicRelaxation::info() {
+  return {.name = name,
+          .summary = "static equilibrium in load steps",
+          .description = "adaptive dynamic relaxation (Kilic & Madenci 2010) to static equilibrium in load steps; "
+                         "after each equilibrium the bonds over their critical stretch break and the step is relaxed "
+                         "again until none breaks; one Exodus frame and history row per load step (docs/algorithms.md)",
+          .keys = {{.key = "load_steps", .type = ValueType::integer, .default_yaml = "1", .range = at_least_one,
+                    .description = "number of load steps N; step k is solved at t_k = k·end_time/N"},
+                   {.key = "end_time", .unit = Unit::time, .default_yaml = "1 s", .range = positive,
+                    .description = "time of the last load step (s): where time-dependent loads are evaluated, and the "
+                                   "real time over which viscous and rate-dependent materials relax"},
+                   {.key = "ramp", .type = ValueType::boolean, .default_yaml = "true",
+                    .description = "scale prescribed displacements and body forces by the load factor k/N (false: take "
+                                   "them as the expressions give them at t_k)"},
+                   {.key = "tolerance", .default_yaml = "1e-8", .range = positive,
+                    .description = "equilibrium when the force residual on the free dofs is at most this fraction of the "
+                                   "largest of the support reactions, the applied body force and the step's initial "
+                                   "residual (Euclidean norms of f V)"},
+                   {.key = "max_iterations", .type = ValueType::integer, .default_yaml = "100000", .range = at_least_one,
+                    .description = "iterations allowed for one equilibrium; more ends the run with an error naming the "
+                                   "residual reached"},
+                   {.key = "density_factor", .default_yaml = "5", .range = {1, infinity, false, true},
+                    .description = "fictitious density as a multiple of the Gerschgorin bound ¼ Σ V c/ξ; raise it if the "
+                                   "iterations diverge"}},
+          .check = &DynamicRelaxation::check};
+}
+
+TimeIntegrator::Schedule DynamicRelaxation::schedule(const SolverSpec& solver, double /*stable_time_step*/) {
+  Schedule s;
+  s.steps = solver.parameters.integer("load_steps");
+  s.time_step = solver.parameters.number("end_time") / static_cast<double>(s.steps);
+  return s;
+}
+
+void DynamicRelaxation::check(const Problem& p, DeckContext& ctx) {
+  for (const InitialConditionSpec& ic : p.initial_conditions)
+    if (ic.kind == InitialConditionSpec::Kind::velocity)
+      ctx.error(ic.pos, "initial_conditions",
+                "an initial velocity has no meaning for solver type 'relaxation' (static equilibrium); remove it "
+                "or use the explicit solver");
+  for (const BoundaryConditionSpec& bc : p.boundary_conditions)
+    if (bc.kind == BoundaryConditionSpec::Kind::velocity)
+      ctx.error(bc.pos, "boundary_conditions",
+                "a prescribed velocity has no meaning for solver type 'relaxation' (static equilibrium); prescribe "
+                "the displacement instead");
+  for (const RigidWallSpec& w : p.rigid_walls)
+    if (w.speed != 0)
+      ctx.error(w.pos, "rigid_walls." + w.name, "a moving wall is not supported with solver type 'relaxation'; give it speed 0");
+}
 
 namespace {
 /// The damping coefficient's cap: (2 − c) must stay positive for the update to contract (a code
@@ -17,10 +72,15 @@ namespace {
 constexpr double max_damping = 1.9;
 }  // namespace
 
-DynamicRelaxation::DynamicRelaxation(Simulation& sim) : sim_(sim) {
+DynamicRelaxation::DynamicRelaxation(Simulation& sim)
+    : sim_(sim),
+      ramp_(sim.problem().solver.parameters.boolean("ramp")),
+      tolerance_(sim.problem().solver.parameters.number("tolerance")),
+      max_iterations_(sim.problem().solver.parameters.integer("max_iterations")),
+      density_factor_(sim.problem().solver.parameters.number("density_factor")) {
   std::vector<double> k;
   stiffness_bound(sim_.model(), k);
-  const double factor = sim_.problem().solver.density_factor;
+  const double factor = density_factor_;
   density_.resize(sim_.num_owned());
   // Δt = 1: Λ ≥ ¼ Σ_j |K_ij|; a point without bonds gets 1 (it has no stiffness to bound).
   for (std::size_t i = 0; i < density_.size(); ++i) density_[i] = k[i] > 0 ? factor * 0.25 * k[i] : 1.0;
@@ -46,8 +106,7 @@ void DynamicRelaxation::set_loads(double t, double factor) {
 void DynamicRelaxation::initialize() {
   sim_.apply_initial_state();
   State& state = sim_.state();
-  const SolverSpec& solver = sim_.problem().solver;
-  set_loads(0.0, solver.ramp ? 0.0 : 1.0);
+  set_loads(0.0, ramp_ ? 0.0 : 1.0);
   std::fill(state.v.data(), state.v.data() + 3 * state.v.size(), 0.0);
   std::string failure;
   try {
@@ -58,7 +117,7 @@ void DynamicRelaxation::initialize() {
   sim_.commit(0.0);
   sim_.agree_on_failure(failure);
   committed_u_ = state.u;
-  load_factor_ = solver.ramp ? 0.0 : 1.0;
+  load_factor_ = ramp_ ? 0.0 : 1.0;
 }
 
 void DynamicRelaxation::evaluate_residual_force(std::vector<double>& F) {
@@ -121,7 +180,6 @@ double DynamicRelaxation::relative_residual(const std::vector<double>& F, double
 
 std::int64_t DynamicRelaxation::relax() {
   State& state = sim_.state();
-  const SolverSpec& solver = sim_.problem().solver;
   const auto& kind = sim_.loads().dof_kinds();
   const Communicator& comm = sim_.communicator();
   const std::size_t dofs = 3 * sim_.num_owned();
@@ -146,13 +204,13 @@ std::int64_t DynamicRelaxation::relax() {
       if (comm.first_rank_with(!failure.empty()) < 0) failure = "dynamic relaxation diverged (non-finite residual)";
       sim_.agree_on_failure(failure);
     }
-    if (residual_ <= solver.tolerance) return iteration;
-    if (iteration >= solver.max_iterations)
+    if (residual_ <= tolerance_) return iteration;
+    if (iteration >= max_iterations_)
       throw NumericalError(fmt::format(
           "dynamic relaxation did not converge in load step {} (time {:.6g} s, load factor {:.6g}): relative force "
           "residual {:.3e} after {} iterations, tolerance {:.3e}; raise solver.max_iterations, loosen "
-          "solver.tolerance or use more load_steps",
-          state.step + 1, state.time, load_factor_, residual_, iteration, solver.tolerance));
+          "tolerance_ or use more load_steps",
+          state.step + 1, state.time, load_factor_, residual_, iteration, tolerance_));
     double c = 0;
     if (iteration > 0) {
       // Local Rayleigh quotient over the free dofs that moved (both sums reproducible).
@@ -182,7 +240,6 @@ std::int64_t DynamicRelaxation::relax() {
 
 void DynamicRelaxation::advance() {
   State& state = sim_.state();
-  const SolverSpec& solver = sim_.problem().solver;
   const Discretization& disc = sim_.discretization();
   const std::size_t owned = sim_.num_owned();
   const auto& kind = sim_.loads().dof_kinds();
@@ -194,7 +251,7 @@ void DynamicRelaxation::advance() {
   const VectorField wall_before = sim_.has_walls() ? sim_.wall_force() : VectorField();
 
   const double t = static_cast<double>(k) * dt;
-  load_factor_ = solver.ramp ? static_cast<double>(k) / static_cast<double>(sim_.total_steps()) : 1.0;
+  load_factor_ = ramp_ ? static_cast<double>(k) / static_cast<double>(sim_.total_steps()) : 1.0;
   state.time = t;
   set_loads(t, load_factor_);
   iterations_ = 0;
@@ -234,14 +291,13 @@ void DynamicRelaxation::advance() {
 }
 
 std::string DynamicRelaxation::describe() const {
-  const SolverSpec& s = sim_.problem().solver;
   std::string out;
   out += fmt::format("solver           relaxation (adaptive dynamic relaxation, Kilic & Madenci 2010)\n");
   out += fmt::format("load steps       {} to t = {:.6g} s ({}), Δt = {:.6g} s\n", sim_.total_steps(),
                      sim_.time_step() * static_cast<double>(sim_.total_steps()),
-                     s.ramp ? "loads ramped by k/N" : "loads as given at each t_k", sim_.time_step());
+                     ramp_ ? "loads ramped by k/N" : "loads as given at each t_k", sim_.time_step());
   out += fmt::format("equilibrium      relative force residual ≤ {:.3g}, at most {} iterations, density factor {:.3g}\n",
-                     s.tolerance, s.max_iterations, s.density_factor);
+                     tolerance_, max_iterations_, density_factor_);
   return out;
 }
 

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "peridot/deck/solver_schema.hpp"
 #include "peridot/solvers/time_integrator.hpp"
 #include "peridot/state/fields.hpp"
 
@@ -32,6 +33,14 @@ namespace peridot {
 
 class DynamicRelaxation final : public TimeIntegrator {
  public:
+  static constexpr std::string_view name = "relaxation";
+  /// Its deck keys (solver.type: relaxation) and checks (deck/solver_schema.hpp).
+  static SolverInfo info();
+  /// N load steps of Δt = end_time/N.
+  static Schedule schedule(const SolverSpec& solver, double stable_time_step);
+  /// Refuses what has no meaning for a static solution: velocities (initial, prescribed) and moving walls.
+  static void check(const Problem& problem, DeckContext& context);
+
   explicit DynamicRelaxation(Simulation& sim);
   void initialize() override;
   void advance() override;
@@ -63,6 +72,11 @@ class DynamicRelaxation final : public TimeIntegrator {
   void set_loads(double t, double factor);
 
   Simulation& sim_;
+  // The deck's settings (solver section).
+  bool ramp_;                      ///< loads scaled by the load factor k/N
+  double tolerance_;               ///< relative force residual at equilibrium
+  std::int64_t max_iterations_;    ///< per equilibrium
+  double density_factor_;          ///< fictitious density / the Gerschgorin bound
   std::vector<double> density_;  ///< Λ per point (kg/m³ with Δt = 1)
   VectorField body_force_;       ///< the deck's body force at t_k, before the load factor
   std::vector<double> velocity_, force_, previous_force_;  ///< per owned dof

@@ -229,7 +229,7 @@ void run_problem(const Problem& problem, const RunOptions& options) {
   for (const Diagnostic& w : problem.warnings) log.line(w.str());
   std::istringstream setup(describe_setup(sim));
   for (std::string line; std::getline(setup, line);) log.line(line);
-  if (problem.solver.kind == SolverKind::explicit_dynamics && sim.time_step() > sim.stable_time_step()) {
+  if (sim.integrator().bounded_by_stable_time_step() && sim.time_step() > sim.stable_time_step()) {
     const std::string warning = fmt::format("warning: time step {:.6g} s is above the stable time step {:.6g} s",
                                             sim.time_step(), sim.stable_time_step());
     log.line(warning);

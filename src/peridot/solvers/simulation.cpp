@@ -119,20 +119,9 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
 
   work_.assign(disc_.num_points(), 0.0);
   stable_dt_ = comm_.min(peridot::stable_time_step(model_));
-  const SolverSpec& solver = problem_.solver;
-  if (solver.kind == SolverKind::relaxation) {
-    total_steps_ = solver.load_steps;
-    dt_ = solver.end_time.value_or(1.0) / static_cast<double>(total_steps_);
-  } else {
-    dt_ = solver.time_step ? *solver.time_step : solver.safety_factor * stable_dt_;
-    if (solver.end_time) {
-      // Whole steps that end exactly at end_time, none longer than the chosen Δt.
-      total_steps_ = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(*solver.end_time / dt_ * (1 - 1e-12))));
-      dt_ = *solver.end_time / static_cast<double>(total_steps_);
-    } else {
-      total_steps_ = solver.num_steps.value_or(0);
-    }
-  }
+  const TimeIntegrator::Schedule schedule = time_schedule(problem_.solver, stable_dt_);
+  dt_ = schedule.time_step;
+  total_steps_ = schedule.steps;
   integrator_ = make_time_integrator(*this);
 }
 

@@ -2,8 +2,9 @@
 // The solver interface: a TimeIntegrator advances a Simulation from one accepted state to the next
 // through the force evaluator (Simulation::evaluate, commit, break_bonds) and nothing else of its
 // internals. Members: velocity Verlet (velocity_verlet.hpp, solver.type: explicit) and adaptive dynamic
-// relaxation in load steps (dynamic_relaxation.hpp, solver.type: relaxation). A new solver is one file
-// pair and one line in make_time_integrator (time_integrator.cpp), plus its deck keys (deck/schema.cpp).
+// relaxation in load steps (dynamic_relaxation.hpp, solver.type: relaxation). A solver describes itself in
+// its own file pair (`name`, `info()`: its deck keys and checks, `schedule`), and its one registration line is
+// in the list of time_integrator.cpp.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -15,6 +16,12 @@ class Simulation;
 
 class TimeIntegrator {
  public:
+  /// The steps of a run: how many, and the time each one advances.
+  struct Schedule {
+    double time_step = 0;
+    std::int64_t steps = 0;
+  };
+
   virtual ~TimeIntegrator() = default;
   /// The state at t = 0 (initial conditions) with its forces evaluated and committed (Δt = 0).
   virtual void initialize() = 0;
@@ -26,7 +33,14 @@ class TimeIntegrator {
   /// Extra history columns of this solver and their values at the last step (empty for the explicit one).
   virtual std::vector<std::string> history_columns() const { return {}; }
   virtual std::vector<double> history_values() const { return {}; }
+  /// Whether the stable time step bounds its Δt (explicit: a larger one is warned about).
+  virtual bool bounded_by_stable_time_step() const { return false; }
 };
+
+struct SolverSpec;
+
+/// The schedule of the deck's solver (its type's `schedule`), given the stable time step.
+TimeIntegrator::Schedule time_schedule(const SolverSpec& solver, double stable_time_step);
 
 /// The integrator the deck's solver.type names, bound to `sim` (which outlives it).
 std::unique_ptr<TimeIntegrator> make_time_integrator(Simulation& sim);

@@ -7,7 +7,46 @@
 
 #include "peridot/solvers/simulation.hpp"
 
+// KeySpecs are written with designated initializers that leave the other fields at their defaults on
+// purpose; GCC 12 warns about every omitted field regardless.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
 namespace peridot {
+
+SolverInfo VelocityVerlet::info() {
+  return {.name = name,
+          .summary = "dynamics by velocity Verlet",
+          .description = "the solver: explicit dynamics (velocity Verlet, the default) or, with type: relaxation, "
+                         "quasi-static load steps (next section)",
+          .keys = {{.key = "end_time", .unit = Unit::time, .range = positive, .description = "simulated time (s); or num_steps",
+                    .required = true, .one_of = "duration"},
+                   {.key = "num_steps", .type = ValueType::integer, .range = at_least_one, .description = "number of steps; or end_time",
+                    .required = true, .one_of = "duration"},
+                   {.key = "time_step", .unit = Unit::time, .range = positive,
+                    .description = "fixed Δt (s); default safety_factor × stable Δt"},
+                   {.key = "safety_factor", .default_yaml = "0.8", .range = {0, 1, true, false},
+                    .description = "fraction of the stable time step"},
+                   {.key = "damping", .unit = Unit::rate, .default_yaml = "0", .range = {0, infinity, false, true},
+                    .description = "mass-proportional viscous damping c (1/s): free velocities decay as e^(−ct); "
+                                   "for relaxing to static equilibrium (the energy it removes is not in the history)"}}};
+}
+
+TimeIntegrator::Schedule VelocityVerlet::schedule(const SolverSpec& solver, double stable_time_step) {
+  const Parameters& q = solver.parameters;
+  Schedule s;
+  s.time_step = q.has("time_step") ? q.number("time_step") : q.number("safety_factor") * stable_time_step;
+  if (q.has("end_time")) {
+    // Whole steps that end exactly at end_time, none longer than the chosen Δt.
+    const double end_time = q.number("end_time");
+    s.steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(end_time / s.time_step * (1 - 1e-12))));
+    s.time_step = end_time / static_cast<double>(s.steps);
+  } else {
+    s.steps = q.has("num_steps") ? q.integer("num_steps") : 0;
+  }
+  return s;
+}
+
+VelocityVerlet::VelocityVerlet(Simulation& sim) : sim_(sim), damping_(sim.problem().solver.parameters.number("damping")) {}
 
 void VelocityVerlet::initialize() {
   sim_.apply_initial_state();
@@ -34,7 +73,7 @@ void VelocityVerlet::kick(double half_dt) {
   for (std::size_t block = 0; block < model.ranges.size(); ++block) {
     const BlockRange range = model.ranges[block];
     const double scale = half_dt / model.params[block].density;
-    const double decay = std::exp(-sim_.problem().solver.damping * half_dt);
+    const double decay = std::exp(-damping_ * half_dt);
     if (c) {
 #pragma omp parallel for schedule(static)
       for (std::size_t k = 3 * range.begin; k < 3 * range.end; ++k)

@@ -7,20 +7,31 @@
 // to the internal and body forces in both kicks, and their work to the external work (trapezoidal, like
 // the body force). Optional mass-proportional damping (solver.damping) multiplies free velocities by
 // e^{−c Δt/2} in each kick.
+#include <string_view>
+
+#include "peridot/deck/solver_schema.hpp"
 #include "peridot/solvers/time_integrator.hpp"
 
 namespace peridot {
 
 class VelocityVerlet final : public TimeIntegrator {
  public:
-  explicit VelocityVerlet(Simulation& sim) : sim_(sim) {}
+  static constexpr std::string_view name = "explicit";
+  /// Its deck keys (solver.type: explicit, the default) (deck/solver_schema.hpp).
+  static SolverInfo info();
+  /// Δt = time_step or safety_factor × stable; whole steps to end_time, or num_steps.
+  static Schedule schedule(const SolverSpec& solver, double stable_time_step);
+
+  explicit VelocityVerlet(Simulation& sim);
   void initialize() override;
   void advance() override;
   std::string describe() const override;
+  bool bounded_by_stable_time_step() const override { return true; }
 
  private:
   void kick(double half_dt);
   Simulation& sim_;
+  double damping_;  ///< c (1/s) of solver.damping
 };
 
 }  // namespace peridot
