@@ -18,9 +18,9 @@ struct ModelContext {
   BondList* bonds = nullptr;
   std::vector<MaterialParams> params;     ///< per block: what every model has
   std::vector<ModelParams> model_params;  ///< per block: its model's own constants (Params)
-  std::vector<BlockRange> ranges;      ///< per block
-  double partial_volume_radius = 0;    ///< 0: no partial-volume correction
-  std::vector<std::uint8_t> no_fail;   ///< per point: bonds touching it never break (empty = none)
+  std::vector<BlockRange> ranges;         ///< per block
+  double partial_volume_radius = 0;       ///< 0: no partial-volume correction
+  std::vector<std::uint8_t> no_fail;      ///< per point: bonds touching it never break (empty = none)
   /// 1/m per point (set once from compute_weighted_volume): the kernels multiply, never divide, by m.
   std::vector<double> inverse_weighted_volume;
   /// LAMMPS PERI's order, for the side-by-side benchmark only: a bond that fails in a step still carries
