@@ -628,6 +628,9 @@ TEST(Deck, ModelPageExamplesParse) {
         const Problem problem = parse(deck);
         ASSERT_EQ(problem.materials.size(), 1u);
         EXPECT_EQ(problem.materials[0].model, model.name);
+        // The resolved deck writes the model's own keys back so that it parses to the same problem.
+        const std::string resolved = resolved_deck_yaml(problem);
+        EXPECT_EQ(resolved_deck_yaml(parse(resolved)), resolved) << model.name;
       } catch (const InputError& e) {
         std::string all;
         for (const Diagnostic& d : e.diagnostics()) all += d.str() + "\n";
@@ -635,6 +638,35 @@ TEST(Deck, ModelPageExamplesParse) {
       }
     }
   }
+}
+
+// Every solver type, with and without its optional keys, resolves to a deck that parses to the same problem;
+// its keys are in SolverSpec::parameters with their defaults.
+TEST(Deck, SolverTypesRoundTrip) {
+  const std::string head =
+      "discretization: {dimension: 2, plane: stress, spacing: 1 mm, horizon_factor: 3.015}\n"
+      "materials: {m: {model: lps, density: 1000, youngs_modulus: 1 GPa, poisson_ratio: 0.3}}\n"
+      "bodies: {b: {material: m, shape: {box: {min: [0, 0], max: [0.01, 0.01]}}}}\n";
+  for (const char* solver : {"solver: {num_steps: 3}", "solver: {type: explicit, end_time: 1 us, time_step: 1 ns, damping: 5}",
+                             "solver: {type: relaxation}", "solver: {type: relaxation, load_steps: 4, ramp: false, tolerance: 1e-6}"}) {
+    const Problem first = parse(head + solver + "\n");
+    const std::string resolved = resolved_deck_yaml(first);
+    const Problem second = parse(resolved);
+    EXPECT_EQ(resolved_deck_yaml(second), resolved) << solver;
+    EXPECT_EQ(second.solver.type, first.solver.type) << solver;
+    ASSERT_EQ(second.solver.parameters.entries().size(), first.solver.parameters.entries().size()) << solver;
+  }
+  const Problem relaxation = parse(head + "solver: {type: relaxation, load_steps: 4, ramp: false}\n");
+  EXPECT_EQ(relaxation.solver.type, "relaxation");
+  EXPECT_EQ(relaxation.solver.parameters.integer("load_steps"), 4);
+  EXPECT_FALSE(relaxation.solver.parameters.boolean("ramp"));
+  EXPECT_DOUBLE_EQ(relaxation.solver.parameters.number("tolerance"), 1e-8);  // defaults filled in
+  EXPECT_EQ(relaxation.solver.parameters.integer("max_iterations"), 100000);
+  EXPECT_DOUBLE_EQ(relaxation.solver.parameters.number("end_time"), 1.0);
+  const Problem explicit_ = parse(head + "solver: {num_steps: 3}\n");
+  EXPECT_EQ(explicit_.solver.type, "explicit");
+  EXPECT_FALSE(explicit_.solver.parameters.has("end_time"));
+  EXPECT_DOUBLE_EQ(explicit_.solver.parameters.number("safety_factor"), 0.8);
 }
 
 }  // namespace
