@@ -102,11 +102,11 @@ void emit_value(YAML::Emitter& out, const Parameters::Entry& e) {
   }
 }
 
-/// The model's own parameters (MaterialSpec::parameters, in its key table's order), so that the resolved
-/// deck runs the same model; "SECTION.KEY" entries go into a nested mapping.
-void emit_model_parameters(YAML::Emitter& out, const MaterialSpec& m) {
+/// A model's or solver's own parameters (in its key table's order), so that the resolved deck runs the same
+/// model or solver; "SECTION.KEY" entries go into a nested mapping.
+void emit_parameters(YAML::Emitter& out, const Parameters& parameters) {
   std::string open_section;
-  for (const Parameters::Entry& e : m.parameters.entries()) {
+  for (const Parameters::Entry& e : parameters.entries()) {
     const std::size_t dot = e.key.find('.');
     const std::string section = dot == std::string::npos ? "" : e.key.substr(0, dot);
     if (section != open_section) {
@@ -131,7 +131,7 @@ void emit_materials(YAML::Emitter& out, const Problem& p) {
     out << YAML::Key << "youngs_modulus" << YAML::Value << number(m.elastic.youngs_modulus);
     out << YAML::Key << "poisson_ratio" << YAML::Value << number(m.elastic.poisson_ratio);
     out << YAML::Key << "influence" << YAML::Value << std::string(influence_name(m.influence));
-    emit_model_parameters(out, m);
+    emit_parameters(out, m.parameters);
     if (m.damage.enabled) {
       out << YAML::Key << "damage" << YAML::Value << YAML::BeginMap;
       if (m.damage.critical_stretch) out << YAML::Key << "critical_stretch" << YAML::Value << number(*m.damage.critical_stretch);
@@ -255,10 +255,7 @@ void emit_solver_and_output(YAML::Emitter& out, const Problem& p) {
   out << YAML::EndMap;
   out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "type" << YAML::Value << p.solver.type;
-  for (const Parameters::Entry& e : p.solver.parameters.entries()) {
-    out << YAML::Key << e.key << YAML::Value;
-    emit_value(out, e);
-  }
+  emit_parameters(out, p.solver.parameters);
   out << YAML::EndMap;
 
   const OutputSpec& o = p.output;

@@ -20,18 +20,38 @@ bool ModelContext::any_damage() const {
   return std::any_of(params.begin(), params.end(), [](const MaterialParams& p) { return std::isfinite(p.critical_stretch); });
 }
 
-int ModelContext::bond_history_arrays() const {
-  int arrays = 0;
+namespace {
+
+/// The largest value of trait(Model) over the blocks' models (0 without blocks).
+template <class Trait>
+int most_over_blocks(const std::vector<MaterialParams>& params, Trait trait) {
+  int most = 0;
+  for (const MaterialParams& p : params) most = std::max(most, with_model(p.model, trait));
+  return most;
+}
+
+/// Every array index indices(Model) gives over the blocks' models, each once, in the order first given.
+template <class Indices>
+std::vector<int> each_once_over_blocks(const std::vector<MaterialParams>& params, Indices indices) {
+  std::vector<int> all;
   for (const MaterialParams& p : params)
-    arrays = std::max(arrays, with_model(p.model, [](auto m) { return decltype(m)::bond_history_arrays; }));
-  return arrays;
+    for (int k : with_model(p.model, indices))
+      if (k >= 0 && std::find(all.begin(), all.end(), k) == all.end()) all.push_back(k);
+  return all;
+}
+
+}  // namespace
+
+int ModelContext::bond_history_arrays() const {
+  return most_over_blocks(params, [](auto m) { return decltype(m)::bond_history_arrays; });
 }
 
 int ModelContext::point_arrays() const {
-  int arrays = 0;
-  for (const MaterialParams& p : params)
-    arrays = std::max(arrays, with_model(p.model, [](auto m) { return static_cast<int>(decltype(m)::point_arrays.size()); }));
-  return arrays;
+  return most_over_blocks(params, [](auto m) { return static_cast<int>(decltype(m)::point_arrays.size()); });
+}
+
+int ModelContext::point_constant_arrays() const {
+  return most_over_blocks(params, [](auto m) { return decltype(m)::point_constant_arrays; });
 }
 
 void ModelContext::initialize_point_arrays(MaterialHistory& history) const {
@@ -46,23 +66,14 @@ void ModelContext::initialize_point_arrays(MaterialHistory& history) const {
 }
 
 std::vector<int> ModelContext::partner_point_arrays() const {
-  std::vector<int> arrays;
-  for (const MaterialParams& p : params)
-    with_model(p.model, [&](auto model) {
-      for (int k : decltype(model)::partner_point_arrays)
-        if (std::find(arrays.begin(), arrays.end(), k) == arrays.end()) arrays.push_back(k);
-    });
-  return arrays;
+  return each_once_over_blocks(params, [](auto m) {
+    const auto& arrays = decltype(m)::partner_point_arrays;
+    return std::vector<int>(arrays.begin(), arrays.end());
+  });
 }
 
 std::vector<int> ModelContext::released_extension_arrays() const {
-  std::vector<int> arrays;
-  for (const MaterialParams& p : params)
-    with_model(p.model, [&](auto model) {
-      const int k = decltype(model)::released_extension_array;
-      if (k >= 0 && std::find(arrays.begin(), arrays.end(), k) == arrays.end()) arrays.push_back(k);
-    });
-  return arrays;
+  return each_once_over_blocks(params, [](auto m) { return std::vector<int>{decltype(m)::released_extension_array}; });
 }
 
 void ModelContext::set_time_step(double dt) {

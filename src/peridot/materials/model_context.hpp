@@ -53,6 +53,8 @@ struct ModelContext {
   int bond_history_arrays() const;
   /// The most per-point arrays any block's model declares (MaterialHistory::point).
   int point_arrays() const;
+  /// The most per-point constant arrays any block's model calibrates (point_constants).
+  int point_constant_arrays() const;
   /// Sizes the history's point arrays and sets them to the start value each point's model declares.
   void initialize_point_arrays(MaterialHistory& history) const;
   /// The point arrays the present models declare that a partner's force reads, each once.

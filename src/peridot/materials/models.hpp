@@ -20,7 +20,6 @@ namespace peridot {
 
 template <class... Models>
 struct ModelList {
-  static constexpr std::size_t size = sizeof...(Models);
   /// Every model's block constants, one alternative per model in list order (the index is MaterialParams::model).
   using Params = std::variant<typename Models::Params...>;
   /// Position of Model in the list.

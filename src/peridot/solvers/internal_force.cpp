@@ -16,10 +16,8 @@
 namespace peridot {
 
 void calibrate_models(ModelContext& ctx) {
-  int constants = 0;
-  for (const MaterialParams& p : ctx.params)
-    constants = std::max(constants, with_model(p.model, [](auto m) { return decltype(m)::point_constant_arrays; }));
-  ctx.point_constants.assign(static_cast<std::size_t>(constants), std::vector<double>(ctx.disc->num_points(), 0.0));
+  ctx.point_constants.assign(static_cast<std::size_t>(ctx.point_constant_arrays()),
+                             std::vector<double>(ctx.disc->num_points(), 0.0));
   for (std::size_t b = 0; b < ctx.ranges.size(); ++b)
     if (ctx.ranges[b].begin < ctx.ranges[b].end)
       with_model(ctx.params[b].model, [&](auto model) {
