@@ -71,6 +71,7 @@ class HomogeneousBlock {
   void apply(const VectorField& u) {
     State& state = sim_.state();
     state.u = u;
+    sim_.update_temperature();
     compute_dilatation(sim_.model(), state.u, state.dilatation, false, &state.history);
     prepare_history(sim_.model(), state.u, state.dilatation, state.history);
   }
@@ -95,7 +96,8 @@ class HomogeneousBlock {
       const double t = with_model(p.model, [&](auto m) -> double {
         using Model = decltype(m);
         if constexpr (Model::has_bond_kernel)
-          return Model::force_scalar(ctx.model_params_of<Model>(0), fields, i, b, g.e, g.xi, omega);
+          return Model::force_scalar(ctx.model_params_of<Model>(0), fields, i, b, bond_loop::mechanical_extension(ctx, i, g),
+                                     g.xi, omega);
         else
           throw std::logic_error("HomogeneousBlock: the model has no bond kernel");
       });

@@ -483,6 +483,15 @@ struct Parser {
     });
   }
 
+  void parse_temperature(const Value& v) {
+    MapReader r(ctx, v.node, v.key_pos, "temperature", deck_section("temperature").keys);
+    TemperatureSpec t;
+    t.pos = v.key_pos;
+    t.value = r["value"].expression;
+    t.reference = r["reference"].number;
+    p.temperature = std::move(t);
+  }
+
   void parse_rigid_walls(const Value& v) {
     std::vector<std::string_view> names;
     for_each_item(v, "rigid_walls", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
@@ -568,6 +577,7 @@ struct Parser {
     parse_boundary_conditions(r["boundary_conditions"]);
     parse_body_forces(r["body_forces"]);
     parse_rigid_walls(r["rigid_walls"]);
+    if (r.given("temperature")) parse_temperature(r["temperature"]);
     if (r.given("solver")) parse_solver(r["solver"]);
     if (const SolverInfo* solver = find_solver(p.solver.type); solver && solver->check) solver->check(p, ctx);
     if (r.given("decomposition")) {

@@ -42,6 +42,12 @@ std::vector<KeySpec> material_keys(const ModelInfo& model) {
   return keys;
 }
 
+KeySpec thermal_expansion_key() {
+  return {.key = "thermal_expansion", .unit = Unit::thermal_expansion, .default_yaml = "0",
+          .description = "α (1/K): with a temperature field, every bond carries the free thermal stretch α (T − T_ref) "
+                         "of its end point (see temperature)"};
+}
+
 std::vector<KeySpec> damage_keys() {
   return {
       {.key = "critical_stretch", .range = positive, .description = "bond breaks beyond this stretch s0",

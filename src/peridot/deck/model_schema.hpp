@@ -53,6 +53,9 @@ std::vector<std::string_view> model_names();
 std::vector<KeySpec> common_material_keys();
 /// The keys of a material of this model: the common keys and the model's own.
 std::vector<KeySpec> material_keys(const ModelInfo& model);
+/// The key `thermal_expansion` (α, 1/K, default 0), for the key table of a model whose bonds carry the thermal
+/// stretch α (T − T_ref) of a prescribed temperature field (the ordinary models; the bond loops apply it).
+KeySpec thermal_expansion_key();
 /// Keys of a material's damage section.
 std::vector<KeySpec> damage_keys();
 /// How critical-stretch damage works, for the model pages (Markdown; the same for every model).

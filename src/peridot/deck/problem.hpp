@@ -158,6 +158,14 @@ struct RigidWallSpec {
   WallContactKind contact = WallContactKind::penalty;
 };
 
+/// A prescribed temperature field: the thermal strain α (T − T_ref) of the ordinary models and the WLF shift of
+/// the thermoviscoelastic one read it (loads/temperature.hpp).
+struct TemperatureSpec {
+  SourcePos pos;
+  Expression value;      ///< T(x, y, z, t) (K)
+  double reference = 0;  ///< T_ref (K): the temperature at which the body is free of thermal strain
+};
+
 /// The time integrator (solvers/time_integrator.hpp): its type (a name of deck/solver_schema.hpp's
 /// catalogue: explicit, relaxation) and its own keys, which the solver reads (solvers/NAME.cpp).
 struct SolverSpec {
@@ -206,6 +214,7 @@ struct Problem {
   std::vector<BoundaryConditionSpec> boundary_conditions;
   std::vector<BodyForceSpec> body_forces;
   std::vector<RigidWallSpec> rigid_walls;
+  std::optional<TemperatureSpec> temperature;  ///< none: no thermal strain, no WLF shift
   SolverSpec solver;
   PartitionMethod partition = PartitionMethod::rcb;  ///< decomposition.method
   OutputSpec output;

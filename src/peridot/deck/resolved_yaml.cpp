@@ -248,6 +248,14 @@ void emit_loads(YAML::Emitter& out, const Problem& p) {
   });
 }
 
+void emit_temperature(YAML::Emitter& out, const Problem& p) {
+  if (!p.temperature) return;
+  out << YAML::Key << "temperature" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "value" << YAML::Value << p.temperature->value.text;
+  out << YAML::Key << "reference" << YAML::Value << number(p.temperature->reference);
+  out << YAML::EndMap;
+}
+
 void emit_solver_and_output(YAML::Emitter& out, const Problem& p) {
   const char* partition[] = {"rcb", "rib", "hsfc"};
   out << YAML::Key << "decomposition" << YAML::Value << YAML::BeginMap;
@@ -294,6 +302,7 @@ std::string resolved_deck_yaml(const Problem& p) {
   emit_bodies(out, p);
   emit_precracks_and_node_sets(out, p);
   emit_loads(out, p);
+  emit_temperature(out, p);
   emit_solver_and_output(out, p);
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";

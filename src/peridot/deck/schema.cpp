@@ -60,6 +60,7 @@ const std::vector<UnitInfo>& unit_table() {
       {Unit::rate, "rate", {{"1/s", 1.0}, {"1/ms", 1e3}, {"1/us", 1e6}}},
       {Unit::temperature, "temperature", {{"K", 1.0}}},
       {Unit::specific_heat, "specific heat", {{"J/(kg K)", 1.0}, {"J/kg/K", 1.0}, {"kJ/(kg K)", 1e3}}},
+      {Unit::thermal_expansion, "thermal expansion coefficient", {{"1/K", 1.0}}},
   };
   return table;
 }
@@ -193,6 +194,7 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "boundary_conditions", .type = VT::sequence, .description = "prescribed displacement or velocity"},
                 {.key = "body_forces", .type = VT::sequence, .description = "force per volume"},
                 {.key = "rigid_walls", .type = VT::sequence, .description = "rigid frictionless planes the points cannot cross"},
+                {.key = "temperature", .type = VT::mapping, .description = "a prescribed temperature field: thermal strain, WLF shift"},
                 {.key = "solver", .type = VT::mapping, .description = "explicit dynamics or quasi-static relaxation", .required = true},
                 {.key = "decomposition", .type = VT::mapping, .description = "how a distributed run (mpirun) splits the points"},
                 {.key = "output", .type = VT::mapping, .description = "Exodus fields, CSV history, progress"}}});
@@ -309,6 +311,14 @@ std::vector<SectionSpec> make_sections() {
                                 "must lie on the plane at t = 0 (its nearest points half a spacing from it) and the wall must be "
                                 "at rest",
                  .choices = {"penalty", "symmetry"}}}});
+  s.push_back({"temperature",
+               "a prescribed temperature field T(x, y, z, t): every point of a material with thermal_expansion α carries "
+               "the free thermal stretch α (T − reference) in each of its bonds, and the thermoviscoelastic model's "
+               "relaxation times follow T through its WLF shift",
+               {{.key = "value", .type = VT::expression, .unit = Unit::temperature,
+                 .description = "T (K) as an expression of x, y, z, t; a number for a uniform temperature", .required = true},
+                {.key = "reference", .unit = Unit::temperature, .range = positive,
+                 .description = "T_ref (K): the temperature at which the bodies are free of thermal strain", .required = true}}});
   // Section paths are views: the strings live as long as the table, which is built once.
   static const std::vector<std::string> solver_paths = [] {
     std::vector<std::string> paths;

@@ -13,7 +13,8 @@ namespace peridot {
 
 /// Physical quantity of a number; each has an SI unit and a few accepted alternatives ("72 GPa").
 enum class Unit {
-  none, length, time, pressure, density, energy_per_area, velocity, force_density, rate, temperature, specific_heat
+  none, length, time, pressure, density, energy_per_area, velocity, force_density, rate, temperature, specific_heat,
+  thermal_expansion
 };
 
 enum class ValueType {

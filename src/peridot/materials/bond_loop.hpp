@@ -47,6 +47,24 @@ inline double bond_length(const double* x, std::size_t i, std::size_t j) {
   return std::sqrt(xi2);
 }
 
+/// α (T − T_ref) of point i: the stretch of its free thermal expansion (0 without a temperature field).
+inline double thermal_stretch(const ModelContext& ctx, std::size_t i) {
+  return ctx.thermal_stretch.empty() ? 0.0 : ctx.thermal_stretch[i];
+}
+
+/// The extension of bond i → j that point i's model sees: e − α_i (T_i − T_ref) ξ. A free body heated
+/// uniformly expands by αΔT in every direction without force; a constrained one carries the force of −αΔT.
+template <int Dim>
+inline double mechanical_extension(const ModelContext& ctx, std::size_t i, const BondGeometry<Dim>& g) {
+  return g.e - thermal_stretch(ctx, i) * g.xi;
+}
+
+/// The extension the failure rule sees, the same from either end: e − ½(α_i ΔT_i + α_j ΔT_j) ξ.
+inline double bond_mechanical_extension(const ModelContext& ctx, std::size_t i, std::size_t j, double e, double xi) {
+  if (ctx.thermal_stretch.empty()) return e;
+  return e - 0.5 * (ctx.thermal_stretch[i] + ctx.thermal_stretch[j]) * xi;
+}
+
 /// Neighbour volume seen by a bond, with the partial-volume factor when enabled. The pair horizon is
 /// the larger of the two blocks' (as in the neighbour search).
 inline double neighbor_volume(const ModelContext& ctx, std::size_t i, std::size_t j, double xi) {

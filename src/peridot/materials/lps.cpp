@@ -73,6 +73,7 @@ One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v
   return {.name = name,
           .description = "linear peridynamic solid: ordinary state-based, any Poisson ratio",
           .reference = "Silling, Epton, Weckner, Xu & Askari, J. Elasticity 88 (2007) 151-184",
+          .keys = {thermal_expansion_key()},
           .doc = doc};
 }
 

@@ -65,7 +65,7 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(block.influence, g.xi, block.horizon);
-        const double ed = g.e - theta[i] * g.xi * p.inverse_dilatation_factor;
+        const double ed = mechanical_extension(ctx, i, g) - theta[i] * g.xi * p.inverse_dilatation_factor;
         const double elastic = ed - plastic_extension[b] - released * g.xi;
         const double t = alpha * omega * elastic;
         const double v = neighbor_volume(ctx, i, j, g.xi);
@@ -106,7 +106,7 @@ void LpsPlastic::commit(const ModelContext& ctx, const VectorField& u, const std
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         if (bonds.broken[b]) continue;
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, bonds.neighbors[b]);
-        const double ed = g.e - theta[i] * g.xi * p.inverse_dilatation_factor;
+        const double ed = mechanical_extension(ctx, i, g) - theta[i] * g.xi * p.inverse_dilatation_factor;
         const double plastic = plastic_extension[b] + released * g.xi;  // (P8)
         plastic_extension[b] = plastic + (1 - r) * (ed - plastic);      // (P4)
       }
@@ -184,7 +184,8 @@ W_p per unit volume and `equivalent_plastic_strain` is ε̄p.)",
           .keys = {{.key = "yield_stress", .unit = Unit::pressure, .range = positive,
                     .description = "uniaxial yield stress σ_y (Pa)", .required = true},
                    {.key = "hardening_modulus", .unit = Unit::pressure, .default_yaml = "0", .range = non_negative,
-                    .description = "linear hardening H (Pa): σ_Y = σ_y + H ε̄p; 0 = perfectly plastic"}},
+                    .description = "linear hardening H (Pa): σ_Y = σ_y + H ε̄p; 0 = perfectly plastic"},
+                   thermal_expansion_key()},
           .doc = doc};
 }
 

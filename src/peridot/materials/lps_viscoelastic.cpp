@@ -50,7 +50,7 @@ void LpsViscoelastic::commit(const ModelContext& ctx, const VectorField& u, cons
         if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
-        const double ed = g.e - theta[i] * g.xi * p.inverse_dilatation_factor;
+        const double ed = mechanical_extension(ctx, i, g) - theta[i] * g.xi * p.inverse_dilatation_factor;
         if (dt > 0) {  // (V4)
           const double rate_tau = (ed - previous[b]) / dt * tau;  // ρτ
           const double z0 = previous[b] - back[b] - rate_tau;
@@ -111,7 +111,8 @@ is D per unit volume.)",
                     .description = "λ_i: share of the deviatoric stiffness that relaxes (Peridigm 'lambda_i')",
                     .required = true},
                    {.key = "relaxation_time", .unit = Unit::time, .range = positive,
-                    .description = "τ_b (s): relaxation time of the back extension (Peridigm 'tau b')", .required = true}},
+                    .description = "τ_b (s): relaxation time of the back extension (Peridigm 'tau b')", .required = true},
+                   thermal_expansion_key()},
           .doc = doc};
 }
 

@@ -22,6 +22,8 @@ struct MaterialParams {
   double density = 0;  ///< ρ (kg/m³)
   double horizon = 0;  ///< δ (m)
   ElasticConstants elastic;
+  /// α (1/K) of a model whose bonds carry thermal strain (thermal_expansion_key), 0 otherwise.
+  double thermal_expansion = 0;
   /// Bond fails when its stretch exceeds this; +∞ without damage.
   double critical_stretch = std::numeric_limits<double>::infinity();
   /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
@@ -44,6 +46,9 @@ inline constexpr int max_bond_arrays = 4;
 struct KernelFields {
   const double* theta = nullptr;        ///< θ
   const double* inverse_m = nullptr;    ///< 1/m
+  /// α (T − T_ref) per point (ModelContext::thermal_stretch), null without: the kernels receive the
+  /// extension less this stretch times ξ already; a model reads it only for what else it needs.
+  const double* thermal_stretch = nullptr;
   const double* point[max_point_arrays] = {};
   const double* bond[max_bond_arrays] = {};
 };

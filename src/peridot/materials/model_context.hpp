@@ -1,7 +1,8 @@
 #pragma once
-// What every bond loop needs of a problem and that does not change during a run: the points, the bonds,
-// each block's resolved material and point range. Built by the solver (solvers/simulation.cpp), read by the
-// materials' kernels, damage, contact and the solvers' bond loops.
+// What every bond loop needs of a problem besides the state: the points, the bonds, each block's resolved
+// material and point range (fixed during a run), and the prescribed temperature of the current time. Built
+// by the solver (solvers/simulation.cpp), read by the materials' kernels, damage, contact and the solvers'
+// bond loops.
 #include <cstdint>
 #include <vector>
 
@@ -12,7 +13,7 @@
 
 namespace peridot {
 
-/// What the bond loops need that does not change during a run.
+/// What the bond loops need besides the state.
 struct ModelContext {
   const Discretization* disc = nullptr;
   BondList* bonds = nullptr;
@@ -38,6 +39,13 @@ struct ModelContext {
   /// loops then take a point's whole family as its same-block run instead of looking the run's ends up
   /// (find_same_block_run: two dependent loads per point, usually cache misses). Empty: look them up.
   std::vector<std::uint8_t> family_in_block;
+  /// Per point (owned and ghost), with a temperature field (deck `temperature`): T (K) at the time of the
+  /// force being computed; empty without one. Set by the solver before each force evaluation.
+  std::vector<double> temperature;
+  /// Per point (owned and ghost): α (T − T_ref), the stretch of free thermal expansion, which every bond of
+  /// the point subtracts from its stretch (bond_loop::mechanical_extension); empty when no point has one (no
+  /// temperature field, or α = 0 everywhere), and then the bond loops take their paths without it.
+  std::vector<double> thermal_stretch;
 
   /// Adds a block (in block order).
   void add_block(ResolvedMaterial material);

@@ -42,6 +42,7 @@ ResolvedMaterial resolve_material(const MaterialSpec& spec, double horizon, cons
   p.density = spec.density;
   p.horizon = horizon;
   p.elastic = spec.elastic;
+  p.thermal_expansion = spec.parameters.number_or("thermal_expansion", 0.0);
   p.stable_micromodulus = bond_based_micromodulus(spec.elastic, horizon, InfluenceKind::constant, problem);
   if (spec.damage.enabled) {
     if (spec.damage.critical_stretch) p.critical_stretch = *spec.damage.critical_stretch;

@@ -47,6 +47,7 @@ The integrals ∫₀^δ ω ξ^p dξ are evaluated in closed form for each influe
           .description = "prototype microelastic brittle: bond-based, pairwise linear springs",
           .reference = "Silling & Askari, Comput. Struct. 83 (2005) 1526-1535",
           .bond_based = true,
+          .keys = {thermal_expansion_key()},
           .doc = doc};
 }
 

@@ -52,6 +52,7 @@ KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& t
   KernelFields s;
   s.theta = theta.data();
   s.inverse_m = ctx.inverse_weighted_volume.data();
+  if (!ctx.thermal_stretch.empty()) s.thermal_stretch = ctx.thermal_stretch.data();
   if (history) {
     for (std::size_t k = 0; k < history->point.size(); ++k) s.point[k] = history->point[k].data();
     for (std::size_t k = 0; k < history->bond.size(); ++k) s.bond[k] = history->bond[k].empty() ? nullptr : history->bond[k].data();
@@ -100,6 +101,19 @@ inline double dilatation_factor_of(const Params& mp) {
 inline int points_per_chunk(BlockRange range) {
   const std::size_t per_thread = (range.end - range.begin) / (16 * static_cast<std::size_t>(omp_get_max_threads()));
   return static_cast<int>(std::clamp<std::size_t>(per_thread, 1, 512));
+}
+
+/// Runs f(std::bool_constant<a>{}, std::bool_constant<b>{}): two run-time switches of a bond loop (failure
+/// check, thermal stretch) as compile-time ones.
+template <class F>
+void with_flags(bool a, bool b, F&& f) {
+  if (a) {
+    if (b) f(std::true_type{}, std::true_type{});
+    else f(std::true_type{}, std::false_type{});
+  } else {
+    if (b) f(std::false_type{}, std::true_type{});
+    else f(std::false_type{}, std::false_type{});
+  }
 }
 
 /// Critical stretch of a bond of a point of block `block`: the smaller of its two blocks'.
@@ -194,8 +208,10 @@ template <int Dim>
   xi = std::sqrt(xi2), length = std::sqrt(y2);
 }
 
-/// The dilatation sum Σ ω ξ e V over the run, and what the bonds that break now took out of it.
-template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence>
+/// The dilatation sum Σ ω ξ e V over the run, and what the bonds that break now took out of it. Thermal: e less
+/// the free thermal stretch of point i (bond_loop::mechanical_extension), the failure check on the bond's
+/// (bond_mechanical_extension).
+template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool Thermal>
 inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_in, const KernelFields& s_in,
                            std::size_t i, double& sum_out, double& lost_out) {
   const SameBlockRun run = run_in;  // private copies (SameBlockRun)
@@ -213,12 +229,16 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
     const std::uint32_t j = run.neighbor[k];
     double dy0, dy1, dy2, xi, length;
     run_bond_geometry<Dim>(run, x_i, u_i, j, dy0, dy1, dy2, xi, length);
-    const double e = length - xi;
+    double e = length - xi, e_bond = e;
+    if constexpr (Thermal) {
+      e_bond = e - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi;
+      e -= s.thermal_stretch[i] * xi;
+    }
     double v = run.volume[j];
     if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
     const double term = influence_of<Influence>(xi, p.horizon) * xi * Model::dilatation_extension(s, b, e) * v;
     const bool intact = run.intact[k] != 0;
-    const bool breaks = intact && e > run.break_limit * xi;
+    const bool breaks = intact && e_bond > run.break_limit * xi;
     if constexpr (CheckFailure) run.breaking[k] = breaks ? 1.0 : 0.0;
     // Weights, not selects: with a select GCC loads V only for the bonds that count, a masked gather it
     // cannot vectorise. term is finite (ξ > 0), so a weight of 0 adds nothing.
@@ -228,8 +248,9 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
   sum_out = sum, lost_out = lost;
 }
 
-/// Σ_j of the force density on point i from the bonds of the run.
-template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence>
+/// Σ_j of the force density on point i from the bonds of the run; Thermal as for run_dilatation, each end's
+/// kernel with its own thermal stretch.
+template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool Thermal>
 inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, const typename Model::Params& mp_in,
                       const KernelFields& s_in, std::size_t i, double f[3]) {
   const SameBlockRun run = run_in;  // private copies (SameBlockRun)
@@ -250,16 +271,21 @@ inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, co
     double dy0, dy1, dy2, xi, length;
     run_bond_geometry<Dim>(run, x_i, u_i, j, dy0, dy1, dy2, xi, length);
     const double e = length - xi;
+    double e_i = e, e_j = e, e_bond = e;
+    if constexpr (Thermal) {
+      e_i = e - s.thermal_stretch[i] * xi, e_j = e - s.thermal_stretch[j] * xi;
+      e_bond = e - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi;
+    }
     const double omega = influence_of<Influence>(xi, p.horizon);
     const std::uint64_t partner_bond = reads_partner_bond ? run.reverse[b] : 0;
-    const double t = Model::force_scalar(mp, s, i, b, e, xi, omega) +
-                     Model::force_scalar(mp, s, j, partner_bond, e, xi, omega);
+    const double t = Model::force_scalar(mp, s, i, b, e_i, xi, omega) +
+                     Model::force_scalar(mp, s, j, partner_bond, e_j, xi, omega);
     double v = run.volume[j];
     if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
     const double carried = t * v / length;
     const bool intact = run.intact[k] != 0;
-    if constexpr (CheckFailure) run.breaking[k] = (intact && e > run.break_limit * xi) ? 1.0 : 0.0;
-    const double scale = (intact && !(e > run.drop_limit * xi)) ? carried : 0.0;
+    if constexpr (CheckFailure) run.breaking[k] = (intact && e_bond > run.break_limit * xi) ? 1.0 : 0.0;
+    const double scale = (intact && !(e_bond > run.drop_limit * xi)) ? carried : 0.0;
     fx += scale * dy0;
     fy += scale * dy1;
     if constexpr (Dim == 3) fz += scale * dy2;
@@ -564,6 +590,7 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
   const KernelFields fields = kernel_fields(ctx, theta, history);
   // With protected points the failure check needs both ends' flags: the general path only.
   const bool vector_path = failure.no_fail == nullptr;
+  const bool thermal = fields.thermal_stretch != nullptr;  // the AVX-512 loops have no thermal stretch
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
     using Model = decltype(model);
@@ -584,15 +611,14 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
         double sum = 0, lost = 0;
-        const bool in_place =
-            vector_path && dilatation_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, sum, lost);
+        const bool in_place = vector_path && !thermal &&
+                              dilatation_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, sum, lost);
         if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
-            if (fail_bonds)
-              run_dilatation<Dim, Model, true, kind.value>(run, p, fields, i, sum, lost);
-            else
-              run_dilatation<Dim, Model, false, kind.value>(run, p, fields, i, sum, lost);
+            with_flags(fail_bonds, thermal, [&](auto check, auto heated) {
+              run_dilatation<Dim, Model, check.value, kind.value, heated.value>(run, p, fields, i, sum, lost);
+            });
           });
           if (fail_bonds) scratch.store(broken, run.b_begin, run.b_end);
         }
@@ -602,8 +628,10 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
           const std::uint32_t j = neighbors[b];
           const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
           const double term = influence(p.influence, g.xi, p.horizon) * g.xi *
-                              model.dilatation_extension(fields, b, g.e) * neighbor_volume(ctx, i, j, g.xi);
-          if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, blocks[i], j))) {
+                              model.dilatation_extension(fields, b, mechanical_extension(ctx, i, g)) *
+                              neighbor_volume(ctx, i, j, g.xi);
+          if (fail_bonds && failure.fails(i, j, bond_mechanical_extension(ctx, i, j, g.e, g.xi), g.xi,
+                                          pair_critical_stretch(ctx, p, blocks[i], j))) {
             broken[b] = 1;
             lost += term;
             return;
@@ -651,6 +679,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
   const bool after_force = ctx.bond_failure_after_force;
   // With protected points the failure check needs both ends' flags: the general path only.
   const bool vector_path = failure.no_fail == nullptr;
+  const bool thermal = fields.thermal_stretch != nullptr;  // the AVX-512 loops have no thermal stretch
   for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
     using Model = decltype(model);
@@ -666,15 +695,14 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
         double fi[3] = {0, 0, 0};
-        const bool in_place =
-            vector_path && force_in_place<Dim, Model>(run, p, mp, fields, i, neighbors, broken, intact, fi);
+        const bool in_place = vector_path && !thermal &&
+                              force_in_place<Dim, Model>(run, p, mp, fields, i, neighbors, broken, intact, fi);
         if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
-            if (fail_bonds)
-              run_force<Dim, Model, true, kind.value>(run, p, mp, fields, i, fi);
-            else
-              run_force<Dim, Model, false, kind.value>(run, p, mp, fields, i, fi);
+            with_flags(fail_bonds, thermal, [&](auto check, auto heated) {
+              run_force<Dim, Model, check.value, kind.value, heated.value>(run, p, mp, fields, i, fi);
+            });
           });
           if (fail_bonds) scratch.store(broken, run.b_begin, run.b_end);
         }
@@ -685,17 +713,19 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
           if (broken[b]) return;
           const std::uint32_t j = neighbors[b];
           const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
-          if (fail_bonds && failure.fails(i, j, g.e, g.xi, pair_critical_stretch(ctx, p, blocks[i], j))) {
+          if (fail_bonds && failure.fails(i, j, bond_mechanical_extension(ctx, i, j, g.e, g.xi), g.xi,
+                                          pair_critical_stretch(ctx, p, blocks[i], j))) {
             broken[b] = 1;
             if (!after_force) return;
           }
           const double omega = influence(p.influence, g.xi, p.horizon);
           const std::uint64_t partner_bond = any_history ? reverse[b] : 0;
+          const double e_j = g.e - thermal_stretch(ctx, j) * g.xi;
           const double t_ji = blocks[j] == blocks[i]
-                                  ? model.force_scalar(mp, fields, j, partner_bond, g.e, g.xi, omega)
+                                  ? model.force_scalar(mp, fields, j, partner_bond, e_j, g.xi, omega)
                                   : other_block_force_scalar(ctx, static_cast<std::size_t>(blocks[j]), fields, j,
-                                                             partner_bond, g.e, g.xi);
-          const double t = model.force_scalar(mp, fields, i, b, g.e, g.xi, omega) + t_ji;
+                                                             partner_bond, e_j, g.xi);
+          const double t = model.force_scalar(mp, fields, i, b, mechanical_extension(ctx, i, g), g.xi, omega) + t_ji;
           const double scale = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
           fx += scale * g.y[0];
           fy += scale * g.y[1];
@@ -730,7 +760,8 @@ void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double omega = influence(p.influence, g.xi, p.horizon);
-        sum += model.bond_energy(mp, fields, i, b, g.e, g.xi, omega) * neighbor_volume(ctx, i, j, g.xi);
+        sum += model.bond_energy(mp, fields, i, b, mechanical_extension(ctx, i, g), g.xi, omega) *
+               neighbor_volume(ctx, i, j, g.xi);
       }
       W[i] = sum;
     }

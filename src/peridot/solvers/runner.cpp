@@ -28,8 +28,8 @@ double point_field(const State& state, const std::string& field, std::size_t i) 
 }
 
 /// The optional Exodus fields a problem writes (registry order): plastic strain and dissipation with an
-/// inelastic model, the correspondence fields with correspondence blocks (and temperature with thermal
-/// softening), fragment labels with damage.
+/// inelastic model, the correspondence fields with correspondence blocks, temperature with a temperature field
+/// or thermal softening, fragment labels with damage.
 std::vector<std::string> optional_exodus_fields(const Simulation& sim) {
   const bool correspondence = sim.has_correspondence();
   std::vector<std::string> fields;
@@ -39,7 +39,9 @@ std::vector<std::string> optional_exodus_fields(const Simulation& sim) {
       case FieldScope::always: break;
       case FieldScope::inelastic: written = sim.model().bond_history_arrays() > 0 || correspondence; break;
       case FieldScope::correspondence: written = correspondence; break;
-      case FieldScope::thermal: written = correspondence && any_thermal_softening(sim.model()); break;
+      case FieldScope::thermal:
+        written = (correspondence && any_thermal_softening(sim.model())) || sim.problem().temperature.has_value();
+        break;
       case FieldScope::damage: written = sim.model().any_damage(); break;
     }
     if (written) fields.emplace_back(field.name);

@@ -95,6 +95,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   }
   agree_on_input_error(refused);
   walls_ = std::make_unique<RigidWalls>(problem_, model_);
+  if (problem_.temperature) temperature_ = std::make_unique<TemperatureField>(*problem_.temperature, disc_);
 
   any_dilatation_ = model_.any_dilatation();
   any_damage_ = model_.any_damage();
@@ -136,7 +137,23 @@ void Simulation::apply_initial_state() {
   loads_->update_body_force(0.0, state_.body_force);
 }
 
+void Simulation::update_temperature() {
+  if (!temperature_ || state_.time == temperature_time_) return;
+  temperature_->evaluate(state_.time, model_.temperature);
+  temperature_time_ = state_.time;
+  const std::size_t n = disc_.num_points();
+  const bool expands = std::any_of(model_.params.begin(), model_.params.end(),
+                                   [](const MaterialParams& p) { return p.thermal_expansion != 0; });
+  if (!expands) return;  // no thermal stretch: the bond loops keep their paths without it
+  model_.thermal_stretch.resize(n);
+  const double reference = temperature_->reference();
+  for (std::size_t i = 0; i < n; ++i)
+    model_.thermal_stretch[i] =
+        model_.params[static_cast<std::size_t>(disc_.block[i])].thermal_expansion * (model_.temperature[i] - reference);
+}
+
 void Simulation::evaluate(double dt, bool break_bonds) {
+  update_temperature();
   // Bond failure is checked in the first pass that computes every bond's stretch (on the current u,
   // before any force uses the bond).
   const bool fail = break_bonds && any_damage_;
@@ -243,6 +260,14 @@ void Simulation::gather_outputs(bool fields, bool totals) {
   if (fields) {
     if (!any_dilatation_) compute_dilatation(model_, state_.u, state_.dilatation, false, &state_.history);
     if (has_correspondence()) correspondence_->write_point_outputs(state_);
+    if (temperature_) {
+      // The prescribed T, except where a J2 law with thermal softening has written its own (it has no 0 K).
+      update_temperature();
+      std::vector<double>& T = state_.point_outputs["temperature"];
+      T.resize(disc_.num_points(), 0.0);
+      for (std::size_t i = 0; i < disc_.num_points(); ++i)
+        if (T[i] == 0) T[i] = model_.temperature[i];
+    }
   }
   if (totals) {
     compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_, &state_.history);
@@ -276,11 +301,9 @@ void Simulation::gather_outputs(bool fields, bool totals) {
   }
   gather_field(work_.data(), 1, global_work_);
   if (totals) gather_field(energy_density_.data(), 1, global_energy_density_);
-  if (has_correspondence()) {
-    gather_field(correspondence_->point_hourglass_work().data(), 1, global_hourglass_work_);
-    if (fields)
-      for (auto& [name, values] : state_.point_outputs) gather_field(values.data(), 1, g.point_outputs[name]);
-  }
+  if (has_correspondence()) gather_field(correspondence_->point_hourglass_work().data(), 1, global_hourglass_work_);
+  if (fields)
+    for (auto& [name, values] : state_.point_outputs) gather_field(values.data(), 1, g.point_outputs[name]);
 }
 
 void Simulation::gather_field(const double* local, int components, std::vector<double>& global) const {

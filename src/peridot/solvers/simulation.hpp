@@ -17,6 +17,7 @@
 // Outputs are gathered to rank 0 in the global point order (gather_outputs), where every total is summed
 // exactly as a serial run sums it. External work is kept per point for the same reason.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,6 +29,7 @@
 #include "peridot/geometry/discretize.hpp"
 #include "peridot/loads/loads.hpp"
 #include "peridot/loads/node_sets.hpp"
+#include "peridot/loads/temperature.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/parallel/halo.hpp"
@@ -103,6 +105,10 @@ class Simulation {
   /// failure in the same pass, on u^{n+1}, as Peridigm does). Throws NumericalError (with step and time)
   /// on this rank only: call agree_on_failure before the next collective that could diverge.
   void evaluate(double dt, bool break_bonds);
+  /// The deck's temperature field at state().time into the model context (T, and α (T − T_ref) per point),
+  /// unless it is there already; nothing without a temperature field. evaluate() calls it; tests that call the
+  /// bond loops directly call it themselves.
+  void update_temperature();
   /// Accepts the last evaluate(): every history advances over Δt, partner-bond copies are refreshed.
   /// Collective.
   void commit(double dt);
@@ -195,6 +201,8 @@ class Simulation {
   std::unique_ptr<Loads> loads_;
   std::unique_ptr<CorrespondenceBlocks> correspondence_;
   std::unique_ptr<RigidWalls> walls_;
+  std::unique_ptr<TemperatureField> temperature_;  ///< the deck's temperature field; null without one
+  double temperature_time_ = std::numeric_limits<double>::quiet_NaN();  ///< the time model_.temperature is at
   VectorField wall_force_;  ///< penalty force density of the walls (N/m³), at the time of the last force
   State state_;
   std::vector<double> energy_density_;

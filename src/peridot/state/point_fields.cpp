@@ -32,7 +32,7 @@ std::vector<PointField> make_fields() {
     fields.push_back({name, false, unit, "correspondence: F, σ, von Mises stress, Green–Lagrange strain",
                       S::correspondence, false, false, nullptr});
   }
-  fields.push_back({"temperature", false, "K", "T of a J2 law with thermal softening (0 elsewhere)", S::thermal, false,
+  fields.push_back({"temperature", false, "K", "T: the deck's temperature field, or a J2 law's with thermal softening (0 elsewhere)", S::thermal, false,
                     false, nullptr});
   fields.push_back({"fragment", false, "-", "fragment label: the smallest input id of its points", S::damage, true,
                     false, [](State& s) { return FieldStorage{nullptr, &s.fragment}; }});

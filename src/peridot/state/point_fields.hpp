@@ -17,7 +17,7 @@ enum class FieldScope : std::uint8_t {
   always,          ///< every problem
   inelastic,       ///< a model with history (lps_plastic, lps_viscoelastic) or a correspondence block
   correspondence,  ///< a correspondence block (State::point_outputs)
-  thermal,         ///< a correspondence J2 law with thermal softening (State::point_outputs)
+  thermal,         ///< a temperature field, or a correspondence J2 law with thermal softening (State::point_outputs)
   damage,          ///< some material can break bonds
 };
 
