@@ -58,6 +58,9 @@ inline Problem box_problem(const BlockSetup& s) {
   m.model = s.model;
   m.density = s.density;
   m.influence = s.influence;
+  // A model calibrated for one influence function gets it, as the deck parser gives it.
+  if (const ModelInfo* info = find_model(s.model); info && info->influence == "inverse_distance")
+    m.influence = InfluenceKind::inverse_distance;
   double K = s.bulk_modulus, G = s.shear_modulus;
   if (s.model == "pmb") {
     // Bond-based: ν = 1/4 (3D, plane strain) or 1/3 (plane stress); G follows from K and ν.

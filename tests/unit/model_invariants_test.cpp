@@ -2,7 +2,8 @@
 // zero net moment, and f = −∂W/∂u by finite differences of the total strain energy. Run for PMB and
 // LPS, in 3D and in 2D (plane stress and plane strain), for the three influence functions, and for the
 // inelastic models with a random history: f = −∂W/∂u on the elastic branch (lps_plastic below yield,
-// lps_viscoelastic with no time elapsed), momentum also while every point flows plastically.
+// lps_viscoelastic and thermoviscoelastic with no time elapsed), momentum also while every point flows
+// plastically.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -32,6 +33,11 @@ BlockSetup setup_for(const Case& c, double yield_stress = 1e12) {
   s.parameters.set_number("yield_stress", yield_stress);  // each model takes the keys it has
   s.parameters.set_number("relaxing_fraction", 0.5);
   s.parameters.set_number("relaxation_time", 1e-5);
+  if (c.model == "thermoviscoelastic")  // two Prony terms; the elastic constants give κ and μ∞
+    for (int k = 0; k < 2; ++k) {
+      s.parameters.set_number("prony_series[" + std::to_string(k) + "].shear_modulus", 20e9 * (k + 1));
+      s.parameters.set_number("prony_series[" + std::to_string(k) + "].relaxation_time", 1e-5 * (k + 1));
+    }
   s.dimension = c.dimension;
   s.plane = c.plane;
   s.model = c.model;
@@ -51,6 +57,7 @@ struct Forces {
 Forces evaluate(Simulation& sim, const VectorField& u) {
   const ModelContext& ctx = sim.model();
   State& s = sim.state();
+  start_step(ctx, s.history, 0.0);
   compute_dilatation(ctx, u, s.dilatation, false, &s.history);
   prepare_history(ctx, u, s.dilatation, s.history);
   compute_internal_force(ctx, u, s.dilatation, s.force, false, &s.history);
@@ -211,6 +218,8 @@ const Case cases[] = {
     {"LpsPlastic2dPlaneStressGaussian", 2, PlaneKind::stress, "lps_plastic", InfluenceKind::gaussian},
     {"LpsViscoelastic3dGaussian", 3, PlaneKind::none, "lps_viscoelastic", InfluenceKind::gaussian},
     {"LpsViscoelastic2dPlaneStrain", 2, PlaneKind::strain, "lps_viscoelastic", InfluenceKind::constant},
+    {"Thermoviscoelastic3d", 3, PlaneKind::none, "thermoviscoelastic", InfluenceKind::inverse_distance},
+    {"Thermoviscoelastic2dPlaneStress", 2, PlaneKind::stress, "thermoviscoelastic", InfluenceKind::inverse_distance},
 };
 
 INSTANTIATE_TEST_SUITE_P(AllModels, ModelInvariants, ::testing::ValuesIn(cases),

@@ -149,7 +149,14 @@ struct Parser {
       m.pos = pos;
       if (model) m.model = std::string(model->name);
       m.density = r["density"].number;
-      const std::string& influence = r["influence"].text;
+      std::string influence = r["influence"].text;
+      if (model && !model->influence.empty()) {
+        if (r.given("influence") && influence != model->influence)
+          ctx.error(r["influence"].pos, r.path_of("influence"),
+                    fmt::format("model {} is calibrated for influence {} only; give that or leave influence out",
+                                model->name, model->influence));
+        influence = model->influence;
+      }
       m.influence = influence == "inverse_distance" ? InfluenceKind::inverse_distance
                     : influence == "gaussian"       ? InfluenceKind::gaussian
                                                     : InfluenceKind::constant;
@@ -166,19 +173,33 @@ struct Parser {
   }
 
   /// A model's or solver's own keys, valid values and defaults, into `parameters`; a mapping key is read
-  /// with its section's table (path "materials.<name>.KEY") and stored as "KEY.SUBKEY".
+  /// with its section's table (path "materials.<name>.KEY") and stored as "KEY.SUBKEY", a sequence key's items
+  /// each with the table of "materials.<name>.KEY[i]" and stored as "KEY[i].SUBKEY".
   void read_parameters(const MapReader& r, const std::vector<KeySpec>& keys, const std::vector<SectionSpec>& sections,
                        Parameters& parameters, const std::string& prefix = "") {
+    auto table = [&](const std::string& path) -> const SectionSpec& {
+      const auto section = std::find_if(sections.begin(), sections.end(), [&](const SectionSpec& s) { return s.path == path; });
+      PERIDOT_REQUIRE(section != sections.end(), "no table for the section " + path);
+      return *section;
+    };
     for (const KeySpec& k : keys) {
       const std::string name = prefix + std::string(k.key);
       if (k.type == ValueType::mapping) {
         if (!r.given(k.key)) continue;
-        const std::string path = fmt::format("materials.<name>.{}", k.key);
-        const auto section = std::find_if(sections.begin(), sections.end(), [&](const SectionSpec& s) { return s.path == path; });
-        PERIDOT_REQUIRE(section != sections.end(), "no table for the section " + path);
+        const SectionSpec& section = table(fmt::format("materials.<name>.{}", k.key));
         const Value& v = r[k.key];
-        MapReader nested(ctx, v.node, v.key_pos, r.path_of(k.key), section->keys);
-        read_parameters(nested, section->keys, sections, parameters, name + ".");
+        MapReader nested(ctx, v.node, v.key_pos, r.path_of(k.key), section.keys);
+        read_parameters(nested, section.keys, sections, parameters, name + ".");
+        continue;
+      }
+      if (k.type == ValueType::sequence) {
+        if (!r.given(k.key)) continue;
+        const SectionSpec& section = table(fmt::format("materials.<name>.{}[i]", k.key));
+        std::size_t index = 0;
+        for_each_item(r[k.key], r.path_of(k.key), [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+          MapReader item(ctx, node, pos, path, section.keys);
+          read_parameters(item, section.keys, sections, parameters, fmt::format("{}[{}].", name, index++));
+        });
         continue;
       }
       if (!r.given(k.key) && k.default_yaml.empty()) continue;  // absent, or invalid (reported)

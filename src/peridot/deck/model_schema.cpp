@@ -72,16 +72,32 @@ function (equations (4) and (5) of the pmb page):
 - (D2) 2D, thickness h: G0 = h c0 s0² ∫₀^δ ω ξ³ dξ, so s0 = √(πG0/(3K′δ)) for ω = 1)";
 }
 
+namespace {
+
+void copy_entry(Parameters& to, const Parameters::Entry& e) {
+  switch (e.kind) {
+    case Parameters::Kind::text: to.set_text(e.key, e.text, e.pos); break;
+    case Parameters::Kind::integer: to.set_integer(e.key, static_cast<std::int64_t>(e.number), e.pos); break;
+    case Parameters::Kind::boolean: to.set_boolean(e.key, e.number != 0, e.pos); break;
+    case Parameters::Kind::number: to.set_number(e.key, e.number, e.pos); break;
+  }
+}
+
+}  // namespace
+
 Parameters complete_parameters(const std::vector<KeySpec>& keys, const Parameters& given) {
   Parameters all;
   for (const KeySpec& k : keys) {
+    if (k.type == ValueType::mapping || k.type == ValueType::sequence) {  // "KEY.SUB" and "KEY[i].SUB", as given
+      const std::string section(k.key);
+      for (const Parameters::Entry& e : given.entries())
+        if (e.key.size() > section.size() && e.key.compare(0, section.size(), section) == 0 &&
+            (e.key[section.size()] == '.' || e.key[section.size()] == '['))
+          copy_entry(all, e);
+      continue;
+    }
     if (const Parameters::Entry* e = given.find(k.key)) {
-      switch (e->kind) {
-        case Parameters::Kind::text: all.set_text(e->key, e->text, e->pos); break;
-        case Parameters::Kind::integer: all.set_integer(e->key, static_cast<std::int64_t>(e->number), e->pos); break;
-        case Parameters::Kind::boolean: all.set_boolean(e->key, e->number != 0, e->pos); break;
-        case Parameters::Kind::number: all.set_number(e->key, e->number, e->pos); break;
-      }
+      copy_entry(all, *e);
       continue;
     }
     if (k.default_yaml.empty()) continue;

@@ -39,6 +39,9 @@ struct ModelInfo {
   std::vector<SectionSpec> sections;
   ModelDoc doc;
   int dimension = 0;  ///< 0: 2D and 3D; 3: 3D only (the deck refuses the model in 2D)
+  /// The one influence function the model is calibrated for ("inverse_distance": the deck refuses another
+  /// and takes this one when none is given); empty: any.
+  std::string_view influence;
   /// Checks across keys that the tables cannot state (a key that only one variant accepts, keys that go
   /// together); reports through the context. Null: none.
   void (*check)(const MapReader& material, const Parameters& parameters, DeckContext& context) = nullptr;

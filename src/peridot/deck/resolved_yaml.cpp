@@ -103,21 +103,39 @@ void emit_value(YAML::Emitter& out, const Parameters::Entry& e) {
 }
 
 /// A model's or solver's own parameters (in its key table's order), so that the resolved deck runs the same
-/// model or solver; "SECTION.KEY" entries go into a nested mapping.
+/// model or solver; "SECTION.KEY" entries go into a nested mapping, "LIST[i].KEY" ones into the i-th mapping
+/// of a sequence.
 void emit_parameters(YAML::Emitter& out, const Parameters& parameters) {
-  std::string open_section;
+  std::string open_section, open_list;  // the nested mapping ("SECTION" or "LIST[i]") and sequence open now
+  auto close_section = [&] {
+    if (!open_section.empty()) out << YAML::EndMap;
+    open_section.clear();
+  };
+  auto close_list = [&] {
+    close_section();
+    if (!open_list.empty()) out << YAML::EndSeq;
+    open_list.clear();
+  };
   for (const Parameters::Entry& e : parameters.entries()) {
     const std::size_t dot = e.key.find('.');
     const std::string section = dot == std::string::npos ? "" : e.key.substr(0, dot);
+    const std::size_t bracket = section.find('[');
+    const std::string list = bracket == std::string::npos ? "" : section.substr(0, bracket);
     if (section != open_section) {
-      if (!open_section.empty()) out << YAML::EndMap;
-      if (!section.empty()) out << YAML::Key << section << YAML::Value << YAML::BeginMap;
+      if (list != open_list) {
+        close_list();
+        if (!list.empty()) out << YAML::Key << list << YAML::Value << YAML::BeginSeq;
+        open_list = list;
+      }
+      close_section();
+      if (!list.empty()) out << YAML::BeginMap;
+      else if (!section.empty()) out << YAML::Key << section << YAML::Value << YAML::BeginMap;
       open_section = section;
     }
     out << YAML::Key << (dot == std::string::npos ? e.key : e.key.substr(dot + 1)) << YAML::Value;
     emit_value(out, e);
   }
-  if (!open_section.empty()) out << YAML::EndMap;
+  close_list();
 }
 
 void emit_materials(YAML::Emitter& out, const Problem& p) {

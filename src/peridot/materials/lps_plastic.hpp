@@ -81,7 +81,9 @@ struct LpsPlastic : ModelBase {
   static Params resolve(const MaterialSpec& spec, const Problem& problem, MaterialParams& block);
 
   /// (P7) θ measures the elastic volume change: e − e^dp (equal to e's sum on a full family).
-  static double dilatation_extension(const KernelFields& s, std::uint64_t b, double e) { return e - s.bond[0][b]; }
+  static double dilatation_extension(const KernelFields& s, std::uint64_t b, double e, double /*xi*/) {
+    return e - s.bond[0][b];
+  }
 
   static double force_scalar(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t b,
                              double e, double xi, double omega) {

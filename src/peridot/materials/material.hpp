@@ -37,7 +37,7 @@ struct MaterialParams {
 
 /// Most per-point and per-bond arrays a model may declare (static_assert in materials/models.hpp).
 inline constexpr int max_point_arrays = 8;
-inline constexpr int max_bond_arrays = 4;
+inline constexpr int max_bond_arrays = 24;
 
 /// What a kernel may read besides its bond: per-point fields indexed by the point, per-bond history by
 /// the bond of that point's family (the partner's bond through BondList::reverse). `point[k]` and
@@ -51,6 +51,8 @@ struct KernelFields {
   const double* thermal_stretch = nullptr;
   const double* point[max_point_arrays] = {};
   const double* bond[max_bond_arrays] = {};
+  /// ModelContext::point_constants[k] (point_constant_arrays), null where no model of the problem has them.
+  const double* point_constant[max_point_arrays] = {};
 };
 
 /// A per-point array a model declares: its name (for messages and restart) and its value before the first

@@ -7,8 +7,8 @@
 //   - its kernels: force_scalar, bond_energy, point_energy (static, called per bond: no virtual call);
 //   - what it stores: per-bond history arrays, per-point arrays (history or this step's scratch), which of
 //     those a partner's force reads (exchanged to ghosts), per-point constants from the reference family;
-//   - its hooks: calibrate (once), set_time_step, prepare (before the force, no side effect on the
-//     history), commit (the step is accepted).
+//   - its hooks: calibrate (once), set_time_step, start_step (once per step, before its first force),
+//     prepare (before every force, no side effect on the history), commit (the step is accepted).
 // Its one registration line is in materials/models.hpp.
 #include <array>
 #include <cstdint>
@@ -28,6 +28,8 @@ struct ModelBase {
   /// Needs θ of every point before the force (a dilatation pass over the bonds).
   static constexpr bool uses_dilatation = false;
   /// Per-bond history arrays (MaterialHistory::bond[0 … n−1]); the partner's bond j → i is then indexed too.
+  /// A model whose count depends on its parameters gives the most it may need here and the count of a block
+  /// in `static int bond_history_count(const Params&)`.
   static constexpr int bond_history_arrays = 0;
   /// Per-point arrays (MaterialHistory::point[k]): history or scratch of the step, with their start values.
   static constexpr std::array<PointArray, 0> point_arrays{};
@@ -39,13 +41,25 @@ struct ModelBase {
   /// Per-point constants (ModelContext::point_constants[k]) that calibrate fills once.
   static constexpr int point_constant_arrays = 0;
 
-  /// The extension a bond adds to the dilatation sum.
-  static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e) { return e; }
+  /// The extension a bond adds to the dilatation sum Σ ω ξ ê V (e: its mechanical extension, xi: |ξ|).
+  static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e, double /*xi*/) { return e; }
+  /// θ_i from the dilatation sum: (n/m) Σ ω ξ ê V, n the model's dilatation_factor, the dimension for a model
+  /// without one (pmb: its θ is only an output, ε₁₁ + ε₂₂ (+ ε₃₃) of a homogeneous strain as for lps).
+  template <class Params>
+  static double dilatation(const Params& p, const KernelFields& s, std::size_t i, double sum, int dimension) {
+    if constexpr (requires { p.dilatation_factor; }) return p.dilatation_factor * sum * s.inverse_m[i];
+    else return dimension * sum * s.inverse_m[i];
+  }
 
   template <class Params>
   static void set_time_step(Params&, double /*dt*/) {}
   template <class Params>
   static void calibrate(ModelContext&, const MaterialParams&, const Params&, BlockRange) {}
+  /// The step over Δt to the current time starts from the committed history (and the temperature of the
+  /// current time): called once per step, before the step's first force evaluation.
+  template <class Params>
+  static void start_step(const ModelContext&, MaterialHistory&, const MaterialParams&, const Params&, BlockRange,
+                         double /*dt*/) {}
   template <class Params>
   static void prepare(const ModelContext&, const VectorField&, const std::vector<double>&, MaterialHistory&,
                       const MaterialParams&, const Params&, BlockRange) {}

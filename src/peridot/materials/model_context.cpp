@@ -43,7 +43,16 @@ std::vector<int> each_once_over_blocks(const std::vector<MaterialParams>& params
 }  // namespace
 
 int ModelContext::bond_history_arrays() const {
-  return most_over_blocks(params, [](auto m) { return decltype(m)::bond_history_arrays; });
+  int most = 0;
+  for (std::size_t b = 0; b < params.size(); ++b)
+    most = std::max(most, with_model(params[b].model, [&](auto m) {
+      using Model = decltype(m);
+      if constexpr (requires { Model::bond_history_count(model_params_of<Model>(b)); })
+        return Model::bond_history_count(model_params_of<Model>(b));
+      else
+        return Model::bond_history_arrays;
+    }));
+  return most;
 }
 
 int ModelContext::point_arrays() const {

@@ -15,6 +15,7 @@
 #include "peridot/materials/lps_plastic.hpp"
 #include "peridot/materials/lps_viscoelastic.hpp"
 #include "peridot/materials/pmb.hpp"
+#include "peridot/materials/thermoviscoelastic.hpp"
 
 namespace peridot {
 
@@ -39,6 +40,7 @@ using MaterialModels = ModelList<
     Lps,
     LpsPlastic,
     LpsViscoelastic,
+    Thermoviscoelastic,
     CorrespondenceModel>;
 // clang-format on
 

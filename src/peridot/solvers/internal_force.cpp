@@ -57,6 +57,7 @@ KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& t
     for (std::size_t k = 0; k < history->point.size(); ++k) s.point[k] = history->point[k].data();
     for (std::size_t k = 0; k < history->bond.size(); ++k) s.bond[k] = history->bond[k].empty() ? nullptr : history->bond[k].data();
   }
+  for (std::size_t k = 0; k < ctx.point_constants.size(); ++k) s.point_constant[k] = ctx.point_constants[k].data();
   PERIDOT_REQUIRE(ctx.bond_history_arrays() == 0 || s.bond[0], "an inelastic model needs the material history");
   PERIDOT_REQUIRE(ctx.point_arrays() == 0 || s.point[0], "a model with point arrays needs the material history");
   return s;
@@ -80,14 +81,6 @@ inline double other_block_force_scalar(const ModelContext& ctx, std::size_t bloc
     else
       return Model::force_scalar(ctx.model_params_of<Model>(block), s, j, reverse_bond, e, xi, omega);
   });
-}
-
-/// n of θ = (n/m) Σ ω ξ e V: the model's dilatation factor, or the dimension for a model without θ of its
-/// own (pmb: its θ is only an output, ε₁₁ + ε₂₂ (+ ε₃₃) of a homogeneous strain as for lps).
-template <int Dim, class Params>
-inline double dilatation_factor_of(const Params& mp) {
-  if constexpr (requires { mp.dilatation_factor; }) return mp.dilatation_factor;
-  else return Dim;
 }
 
 /// The bond passes hand out a block's points in chunks to whichever thread is free (schedule(dynamic)). On a
@@ -236,7 +229,7 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
     }
     double v = run.volume[j];
     if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
-    const double term = influence_of<Influence>(xi, p.horizon) * xi * Model::dilatation_extension(s, b, e) * v;
+    const double term = influence_of<Influence>(xi, p.horizon) * xi * Model::dilatation_extension(s, b, e, xi) * v;
     const bool intact = run.intact[k] != 0;
     const bool breaks = intact && e_bond > run.break_limit * xi;
     if constexpr (CheckFailure) run.breaking[k] = breaks ? 1.0 : 0.0;
@@ -595,7 +588,6 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
     constexpr int Dim = decltype(dim)::value;
     using Model = decltype(model);
     const double break_limit = fail_bonds ? p.critical_stretch : std::numeric_limits<double>::infinity();
-    const double dilatation_factor = dilatation_factor_of<Dim>(mp);
     constexpr int released_array = Model::released_extension_array;
     double* released = nullptr;  // what θ lost to the bonds breaking now, where the model keeps it
     if constexpr (released_array >= 0)
@@ -628,7 +620,7 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
           const std::uint32_t j = neighbors[b];
           const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
           const double term = influence(p.influence, g.xi, p.horizon) * g.xi *
-                              model.dilatation_extension(fields, b, mechanical_extension(ctx, i, g)) *
+                              model.dilatation_extension(fields, b, mechanical_extension(ctx, i, g), g.xi) *
                               neighbor_volume(ctx, i, j, g.xi);
           if (fail_bonds && failure.fails(i, j, bond_mechanical_extension(ctx, i, j, g.e, g.xi), g.xi,
                                           pair_critical_stretch(ctx, p, blocks[i], j))) {
@@ -642,10 +634,16 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
           for (std::uint64_t b = run.b_begin; b < run.b_end; ++b) general_bond(b);
         for (std::uint64_t b = bonds.offsets[i]; b < run.b_begin; ++b) general_bond(b);
         for (std::uint64_t b = run.b_end; b < bonds.offsets[i + 1]; ++b) general_bond(b);
-        theta[i] = dilatation_factor * sum * inverse_m[i];
+        theta[i] = Model::dilatation(mp, fields, i, sum, Dim);
         if (released && fail_bonds) released[i] = lost * inverse_m[i];
       }
     }
+  });
+}
+
+void start_step(const ModelContext& ctx, MaterialHistory& history, double dt) {
+  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
+    model.start_step(ctx, history, p, mp, range, dt);
   });
 }
 

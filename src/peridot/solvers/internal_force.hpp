@@ -24,12 +24,16 @@ KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& t
 void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m);
 
 /// θ_i = (n/m_i) Σ_j ω ξ e V_j over intact bonds, for every point (lps_plastic: e − e^dp in place of e,
-/// lps_plastic.hpp (P7)). With fail_bonds, bonds that fail now (damage/critical_stretch.hpp) are marked
+/// lps_plastic.hpp (P7); thermoviscoelastic: its own θ, Model::dilatation_extension and Model::dilatation). With fail_bonds, bonds that fail now (damage/critical_stretch.hpp) are marked
 /// broken first. The history is required when a model keeps one; with fail_bonds the point array a model
 /// declares as its released_extension_array receives Σ ω ξ (e − e^dp) V / m over the bonds of each point
 /// that broke now.
 void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta,
                         bool fail_bonds = false, MaterialHistory* history = nullptr);
+
+/// Inelastic models, once per step before its first force: what the step's forces need of the committed
+/// history over Δt (thermoviscoelastic: the Prony branches' part of the bond force).
+void start_step(const ModelContext& ctx, MaterialHistory& history, double dt);
 
 /// Inelastic models, before the force: this step's return map from the current u and θ (history
 /// unchanged; may run any number of times).

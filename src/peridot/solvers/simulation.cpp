@@ -166,6 +166,11 @@ void Simulation::evaluate(double dt, bool break_bonds) {
   }
   if (has_history_) {
     model_.set_time_step(dt);
+    if (dt != started_dt_) {  // the first evaluation of a step (or a retry with another Δt)
+      start_step(model_, state_.history, dt);
+      exchange_partner_bonds();
+      started_dt_ = dt;
+    }
     prepare_history(model_, state_.u, state_.dilatation, state_.history);
     for (int k : partner_arrays_) halo_.exchange(state_.history.point[k]);  // what partners' forces read
   }
@@ -186,6 +191,7 @@ void Simulation::commit(double dt) {
   if (has_history_) {
     model_.set_time_step(dt);
     commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
+    started_dt_ = std::numeric_limits<double>::quiet_NaN();
   }
   // A failed correspondence evaluation is reported by the caller; its collective release decision is
   // skipped, as every rank stops at the next agree_on_failure.
@@ -207,7 +213,9 @@ std::uint64_t Simulation::break_bonds() {
     std::vector<double> theta = state_.dilatation;
     compute_internal_force(model_, state_.u, theta, f, true, &state_.history);
   }
-  return comm_.sum(count() - before);
+  const std::uint64_t broken = comm_.sum(count() - before);
+  if (broken > 0) started_dt_ = std::numeric_limits<double>::quiet_NaN();  // the step starts again without them
+  return broken;
 }
 
 Halo::Traffic Simulation::communication() const {

@@ -217,7 +217,9 @@ class Simulation {
   std::vector<int> released_arrays_;
   int history_arrays_ = 0;  ///< per-bond history arrays of the inelastic models (0: none)
   bool has_history_ = false;  ///< a model keeps bond or point arrays: prepare and commit run
-  bool correspondence_failed_ = false;  ///< the last evaluate() failed in a correspondence block
+  bool correspondence_failed_ = false;
+  /// The Δt of the step whose start_step ran since the last commit (NaN: none ran).
+  double started_dt_ = std::numeric_limits<double>::quiet_NaN();  ///< the last evaluate() failed in a correspondence block
   std::int64_t fragments_step_ = -1;  ///< the step state_.fragment was labelled at (-1: never)
 };
 

@@ -1,0 +1,394 @@
+#include "peridot/materials/thermoviscoelastic.hpp"
+
+// KeySpecs are written with designated initializers that leave the other fields at their defaults on
+// purpose; GCC 12 warns about every omitted field regardless.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "peridot/deck/map_reader.hpp"
+#include "peridot/materials/bond_loop.hpp"
+#include "peridot/materials/model_context.hpp"
+
+namespace peridot {
+
+using namespace bond_loop;
+
+namespace {
+
+/// The Madenci–Oterkus constants of (M1) for a shear modulus μ: b(μ) and a_μ(μ) are linear in μ.
+struct Calibration {
+  double a_kappa = 0;         ///< a_κ
+  double a_mu_per_mu = 0;     ///< a_μ / μ
+  double b_per_mu = 0;        ///< b / μ
+  double d = 0;
+};
+
+Calibration calibration(const ElasticConstants& elastic, double delta, const Problem& problem) {
+  constexpr double pi = std::numbers::pi;
+  if (problem.dimension == 3)
+    return {elastic.bulk_modulus / 2, 5.0 / 6.0, 15 / (2 * pi * std::pow(delta, 5)), 9 / (4 * pi * std::pow(delta, 4))};
+  const double h = problem.thickness;
+  return {planar_bulk_modulus(elastic, problem.plane) / 2, 1.0, 6 / (pi * h * std::pow(delta, 4)),
+          2 / (pi * h * std::pow(delta, 3))};
+}
+
+/// ∫₀^Δt x(t)² dt for x(t) = ρτ + (x₀ − ρτ) e^{−t/τ}, i.e. ẋ = ρ − x/τ: with a = ρτ, c = x₀ − ρτ,
+/// a²Δt + 2acτ(1 − ε) + c²(τ/2)(1 − ε²); 1 − ε and 1 − ε² passed in (expm1, so that Δt ≪ τ keeps its digits).
+inline double square_integral(double rate, double start, double tau, double dt, double one_minus_decay,
+                              double one_minus_decay2) {
+  const double a = rate * tau, c = start - a;
+  return a * a * dt + 2 * a * c * tau * one_minus_decay + c * c * 0.5 * tau * one_minus_decay2;
+}
+
+}  // namespace
+
+Thermoviscoelastic::Params Thermoviscoelastic::resolve(const MaterialSpec& spec, const Problem& problem,
+                                                       MaterialParams& block) {
+  const std::string path = "materials." + spec.name;
+  // The constants of (M1) hold for Ω = δ/|ξ| only (the paper's eq 6): ModelInfo::influence.
+  PERIDOT_REQUIRE(block.influence == InfluenceKind::inverse_distance, "thermoviscoelastic: the deck sets Ω = δ/|ξ|");
+  const double delta = block.horizon;
+  const Calibration c = calibration(spec.elastic, delta, problem);
+  Params p;
+  p.horizon = delta;
+  p.dilatation_constant = c.d;
+  const double mu_relaxed = spec.elastic.shear_modulus;
+  double mu_glassy = mu_relaxed;
+  for (int k = 0;; ++k) {
+    const std::string item = fmt::format("prony_series[{}].", k);
+    if (!spec.parameters.has(item + "shear_modulus")) break;
+    PERIDOT_REQUIRE(k < max_terms, "the deck check limits the Prony series to max_terms");
+    const double mu_k = spec.parameters.number(item + "shear_modulus");
+    p.bond_modulus[k] = c.b_per_mu * mu_k;
+    p.relaxation_time[k] = spec.parameters.number(item + "relaxation_time");
+    mu_glassy += mu_k;
+    p.terms = k + 1;
+  }
+  p.bond_relaxed = c.b_per_mu * mu_relaxed;
+  p.bond_glassy = c.b_per_mu * mu_glassy;
+  p.volumetric = c.a_kappa;
+  p.shear_ratio = c.a_mu_per_mu / c.b_per_mu;
+  p.shear_modulus_relaxed = mu_relaxed;
+  p.surface_correction = spec.parameters.boolean("surface_correction");
+  p.second_order = spec.parameters.text("time_integration") == "second_order";
+  if (spec.parameters.has("wlf.c1")) {
+    if (!problem.temperature)
+      throw InputError(spec.pos, path + ".wlf: the WLF shift needs a temperature field (a `temperature` section)");
+    p.wlf = true;
+    p.wlf_c1 = spec.parameters.number("wlf.c1");
+    p.wlf_c2 = spec.parameters.number("wlf.c2");
+    p.wlf_reference = spec.parameters.number("wlf.reference_temperature");
+  }
+  // The stable time step and the relaxation's density bound the stiffness of a PMB solid; the glassy shear
+  // stiffness enters as the P-wave modulus K + 4μ0/3 in place of K.
+  ElasticConstants glassy = spec.elastic;
+  glassy.bulk_modulus = spec.elastic.bulk_modulus + 4 * mu_glassy / 3;
+  glassy.shear_modulus = mu_glassy;
+  block.stable_micromodulus = bond_based_micromodulus(glassy, delta, InfluenceKind::constant, problem);
+  return p;
+}
+
+double Thermoviscoelastic::shift_factor(const Params& p, double temperature) {
+  if (!p.wlf) return 1;
+  const double above = temperature - p.wlf_reference;
+  if (!(p.wlf_c2 + above > 0))
+    throw NumericalError(fmt::format("thermoviscoelastic: temperature {:g} K is at or below T0 − c2 = {:g} K, where the "
+                                     "WLF shift is undefined",
+                                     temperature, p.wlf_reference - p.wlf_c2));
+  return std::pow(10.0, -p.wlf_c1 * above / (p.wlf_c2 + above));
+}
+
+void Thermoviscoelastic::step_factors(const Params& p, double dt, double shift, std::array<double, max_terms>& decay,
+                                      std::array<double, max_terms>& ramp) {
+  for (int k = 0; k < p.terms; ++k) {
+    const double x = dt / (shift * p.relaxation_time[k]);
+    if (p.second_order) {
+      decay[k] = 1 - x;
+      ramp[k] = 0.5 * x;
+    } else {
+      decay[k] = std::exp(-x);
+      ramp[k] = dt > 0 ? 1 + std::expm1(-x) / x : 0.0;  // 1 − (1 − ε)/x
+    }
+  }
+}
+
+// The surface correction (after Madenci & Oterkus 2016: each point's constants from its own family under simple
+// loadings), with the sums of the reference family, n the dimension:
+//   isotropic strain ε (s = ε): θ = nε exactly           → d = n/(δ Σ V);
+//   isotropic strain: the distortional part of W vanishes → r = δ Σ |ξ| V / n²  (b δ Σ |ξ| ε² V = a_μ θ²);
+//   simple shears ε_ab (s = 2ε n_a n_b, θ = 0), averaged over the planes (xy, yz, zx in 3D; xy in 2D):
+//     W = 2μ ε² → b = μ P/(2δ Σ |ξ| Σ_planes n_a² n_b² V), P the number of planes; g = b/b(full family).
+// A full family of the continuum gives d, r and b of (M1) exactly; an interior lattice point gets its lattice's,
+// a point near a surface those of its truncated family. Only ghosts' θ is read, never their constants.
+void Thermoviscoelastic::calibrate(ModelContext& ctx, const MaterialParams&, const Params& p, BlockRange range) {
+  const int n = ctx.disc->dimension;
+  const double* x = ctx.disc->x.data();
+  const BondList& bonds = *ctx.bonds;
+  const double delta = p.horizon, b_full = p.bond_relaxed / p.shear_modulus_relaxed;  // b per unit μ
+  with_dimension(n, [&](auto dim) {
+    constexpr int Dim = decltype(dim)::value;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      double volume = 0, length_moment = 0, shear_moment = 0;
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+        if (bonds.broken[b]) continue;  // pre-cracked: the family the point has
+        const std::uint32_t j = bonds.neighbors[b];
+        const double xi = bond_length<Dim>(x, i, j), V = neighbor_volume(ctx, i, j, xi);
+        double c[3] = {0, 0, 0};
+        for (int a = 0; a < Dim; ++a) c[a] = (x[3 * j + a] - x[3 * i + a]) / xi;
+        const double planes = Dim == 3 ? c[0] * c[0] * c[1] * c[1] + c[1] * c[1] * c[2] * c[2] + c[2] * c[2] * c[0] * c[0]
+                                       : c[0] * c[0] * c[1] * c[1];
+        volume += V;
+        length_moment += xi * V;
+        shear_moment += xi * planes * V;
+      }
+      double d = p.dilatation_constant, g = 1, r = p.shear_ratio;
+      if (p.surface_correction && volume > 0 && shear_moment > 0) {
+        d = n / (delta * volume);
+        r = delta * length_moment / (n * n);
+        g = (Dim == 3 ? 3.0 : 1.0) / (2 * delta * shear_moment) / b_full;
+      }
+      ctx.point_constants[0][i] = d;
+      ctx.point_constants[1][i] = g;
+      ctx.point_constants[2][i] = r;
+    }
+  });
+}
+
+namespace {
+
+/// The shift factor of each point of the range at the context's temperature (1 without WLF), checked before any
+/// parallel loop uses it (a NumericalError cannot leave an OpenMP loop).
+std::vector<double> shift_factors(const ModelContext& ctx, const Thermoviscoelastic::Params& p, BlockRange range) {
+  std::vector<double> shift(range.end - range.begin, 1.0);
+  if (!p.wlf) return shift;
+  PERIDOT_REQUIRE(ctx.temperature.size() >= range.end, "the WLF shift needs the temperature of the step (update_temperature)");
+  for (std::size_t i = range.begin; i < range.end; ++i) {
+    try {
+      shift[i - range.begin] = Thermoviscoelastic::shift_factor(p, ctx.temperature[i]);
+    } catch (const NumericalError& e) {
+      const Vec3 x = ctx.disc->x.get(i);
+      throw NumericalError(fmt::format("{} (point {} at ({:g}, {:g}, {:g}) m)", e.what(), ctx.disc->input_id[i], x.x, x.y, x.z));
+    }
+  }
+  return shift;
+}
+
+}  // namespace
+
+void Thermoviscoelastic::start_step(const ModelContext& ctx, MaterialHistory& history, const MaterialParams& block,
+                                    const Params& p, BlockRange range, double dt) {
+  const double* x = ctx.disc->x.data();
+  const BondList& bonds = *ctx.bonds;
+  const int n = p.terms;
+  const double* previous = history.bond[n].data();
+  double* branch_force = history.bond[n + 1].data();  // A
+  const std::vector<double> shift = shift_factors(ctx, p, range);
+  with_dimension(ctx.disc->dimension, [&](auto dim) {
+    constexpr int Dim = decltype(dim)::value;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      const double d = ctx.point_constants[0][i], g = ctx.point_constants[1][i], r = ctx.point_constants[2][i];
+      std::array<double, max_terms> decay{}, ramp{};
+      step_factors(p, dt, shift[i - range.begin], decay, ramp);
+      std::array<double, max_terms> viscous_sum{};  // δ Σ e^v_k/|ξ| V
+      double previous_sum = 0;                      // δ Σ e_n/|ξ| V
+      double B = 0;
+      for (int k = 0; k < n; ++k) B += p.bond_modulus[k] * ramp[k];
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+        if (bonds.broken[b]) continue;
+        const std::uint32_t j = bonds.neighbors[b];
+        const double xi = bond_length<Dim>(x, i, j);
+        const double weight = p.horizon / xi * neighbor_volume(ctx, i, j, xi);
+        double A = 0;
+        for (int k = 0; k < n; ++k) {
+          const double ev = history.bond[k][b];
+          A += p.bond_modulus[k] * (decay[k] * ev + (1 - decay[k] - ramp[k]) * previous[b]);
+          viscous_sum[k] += weight * ev;
+        }
+        branch_force[b] = g * A;
+        previous_sum += weight * previous[b];
+      }
+      double A_i = 0, sum = 0, square_sum = 0;
+      for (int k = 0; k < n; ++k) {
+        const double theta_v = d * viscous_sum[k];
+        A_i += p.bond_modulus[k] * (decay[k] * theta_v + (1 - decay[k] - ramp[k]) * d * previous_sum);
+        sum += r * g * p.bond_modulus[k] * theta_v;  // as commit leaves them (a history set otherwise too)
+        square_sum += r * g * p.bond_modulus[k] * theta_v * theta_v;
+      }
+      history.point[3][i] = sum;
+      history.point[4][i] = square_sum;
+      history.point[0][i] = g * (p.bond_glassy - B);
+      history.point[1][i] = d * (p.volumetric - r * g * p.bond_glassy) + r * d * g * B;
+      history.point[2][i] = r * d * g * A_i;
+    }
+  });
+}
+
+void Thermoviscoelastic::commit(const ModelContext& ctx, const VectorField& u, const std::vector<double>&,
+                                MaterialHistory& history, const MaterialParams&, const Params& p, BlockRange range,
+                                double dt) {
+  const double* x = ctx.disc->x.data();
+  const double* up = u.data();
+  const BondList& bonds = *ctx.bonds;
+  const int n = p.terms;
+  double* previous = history.bond[n].data();
+  const std::vector<double> shift = shift_factors(ctx, p, range);
+  with_dimension(ctx.disc->dimension, [&](auto dim) {
+    constexpr int Dim = decltype(dim)::value;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      const double a_T = shift[i - range.begin];
+      std::array<double, max_terms> decay{}, ramp{}, tau{}, one_minus_decay{}, one_minus_decay2{};
+      step_factors(p, dt, a_T, decay, ramp);
+      for (int k = 0; k < n; ++k) {
+        tau[k] = a_T * p.relaxation_time[k];
+        one_minus_decay[k] = -std::expm1(-dt / tau[k]);
+        one_minus_decay2[k] = -std::expm1(-2 * dt / tau[k]);
+      }
+      // Per term: δ Σ (∫x²dt)/|ξ| V, δ Σ x_n/|ξ| V (x = e − e^v_k) and δ Σ e^v_k,n+1/|ξ| V; δ Σ ρ/|ξ| V.
+      std::array<double, max_terms> square{}, spring_sum{}, viscous_sum{};
+      double rate_sum = 0;
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+        if (bonds.broken[b]) continue;
+        const std::uint32_t j = bonds.neighbors[b];
+        const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
+        const double e = mechanical_extension(ctx, i, g);
+        const double weight = p.horizon / g.xi * neighbor_volume(ctx, i, j, g.xi);
+        const double rate = dt > 0 ? (e - previous[b]) / dt : 0.0;
+        rate_sum += weight * rate;
+        for (int k = 0; k < n; ++k) {
+          double& ev = history.bond[k][b];
+          const double spring = previous[b] - ev;
+          if (dt > 0) square[k] += weight * square_integral(rate, spring, tau[k], dt, one_minus_decay[k], one_minus_decay2[k]);
+          spring_sum[k] += weight * spring;
+          ev = decay[k] * ev + (1 - decay[k] - ramp[k]) * previous[b] + ramp[k] * e;  // (M3)
+          viscous_sum[k] += weight * ev;
+        }
+        previous[b] = e;
+      }
+      const double d = ctx.point_constants[0][i], g = ctx.point_constants[1][i], r = ctx.point_constants[2][i];
+      double dissipated = 0, sum = 0, square_sum = 0;
+      for (int k = 0; k < n; ++k) {
+        if (dt > 0) {  // (M6): (2 g b_k/τ_k)[δ Σ ∫x²/|ξ| V − r ∫θ(x)² dt], θ(x) = d × the sums above
+          const double theta_square =
+              square_integral(d * rate_sum, d * spring_sum[k], tau[k], dt, one_minus_decay[k], one_minus_decay2[k]);
+          dissipated += 2 * g * p.bond_modulus[k] / tau[k] * (square[k] - r * theta_square);
+        }
+        const double theta_v = d * viscous_sum[k];
+        sum += r * g * p.bond_modulus[k] * theta_v;
+        square_sum += r * g * p.bond_modulus[k] * theta_v * theta_v;
+      }
+      history.dissipation[i] += dissipated;
+      history.point[3][i] = sum;
+      history.point[4][i] = square_sum;
+    }
+  });
+}
+
+namespace {
+
+void check(const MapReader& material, const Parameters& parameters, DeckContext& ctx) {
+  int terms = 0;
+  while (parameters.has(fmt::format("prony_series[{}].shear_modulus", terms))) ++terms;
+  if (terms > Thermoviscoelastic::max_terms)
+    ctx.error(material["prony_series"].pos, material.path_of("prony_series"),
+              fmt::format("{} Prony terms given; at most {} are supported", terms, Thermoviscoelastic::max_terms));
+}
+
+}  // namespace
+
+// The page of `peridot info --model thermoviscoelastic` (docs/models/thermoviscoelastic.md). The equations
+// restate the header comment; keep them in step with the code.
+ModelInfo Thermoviscoelastic::info() {
+  ModelDoc doc{
+    .summary = R"(The ordinary state-based thermoviscoelastic solid of Madenci & Oterkus: their strain energy density
+with a dilatational and a distortional part, the influence function δ/|ξ|, and a shear modulus that relaxes
+as a Prony series μ(t) = μ∞ + Σ μ_k exp(−t/τ_k) while the bulk modulus stays elastic. The deck's elastic
+constants give the bulk modulus κ and the equilibrium (long-time) shear modulus μ∞; `prony_series` adds the
+relaxing terms μ_k, τ_k, so that the instantaneous (glassy) shear modulus is μ0 = μ∞ + Σ μ_k. Relaxation
+times follow the temperature field through the WLF shift, and every bond carries the thermal stretch
+α(T − T_ref). Each Prony term keeps one viscous extension per bond, advanced by the exact integral of its
+evolution equation over a step (unconditionally stable), or by the paper's second-order form.)",
+    .equations = R"(Per point, with s = e/|ξ| the stretch of the mechanical extension e (thermal stretch removed):
+
+- (M1) θ = d δ Σ s V, W = (a_κ − a_μ)θ² + b δ Σ |ξ| s² V, t = (2δ/|ξ|)[d(a_κ − a_μ)θ + b e];
+  3D: a_κ = κ/2, a_μ = 5μ/6, b = 15μ/(2πδ⁵), d = 9/(4πδ⁴); 2D (thickness h): a_κ = κ/2, a_μ = μ,
+  b = 6μ/(πhδ⁴), d = 2/(πhδ³), κ the in-plane bulk modulus (plane stress E/(2(1 − ν))). An isotropic strain
+  ε gives θ = 3ε (2ε) and W = 9κε²/2 (2κε²), a simple shear ε_xy gives W = 2μ ε_xy², as the classical solid.
+- (M2) t = (2δ/|ξ|)[d(a_κ − a_μ∞)θ + b∞ e + Σ_k b_k((e − e^v_k) − r d θ(e − e^v_k))], r = a_μ/b,
+  θ(x) = d δ Σ (x/|ξ|) V, b_k and b∞ the b of μ_k and μ∞
+- (M3) ė^v_k = (e − e^v_k)/τ_k; exactly for e linear over the step, ε_k = exp(−Δt/τ_k),
+  β_k = 1 − (τ_k/Δt)(1 − ε_k): e^v_k ← ε_k e^v_k + (1 − ε_k − β_k) e_n + β_k e_{n+1};
+  `time_integration: second_order` (the paper's eq 24b): ε_k = 1 − Δt/τ_k, β_k = Δt/(2τ_k)
+- WLF: τ_k(T) = a_T τ_k, log₁₀ a_T = −c1(T − T0)/(c2 + T − T0)
+- (M5) W = (a_κ − a_μ∞)θ² + b∞ δ Σ e²/|ξ| V + Σ_k [b_k δ Σ (e − e^v_k)²/|ξ| V − r b_k θ(e − e^v_k)²]
+- (M6) dissipation Σ_k (2/τ_k) ∫ W_k dt, W_k the k-th bracket of (M5), integrated exactly over each step
+
+The paper's viscous stretch γ_k is the distortional stretch of e^v_k, e^v_k/|ξ| − r d θ(e^v_k)/|ξ|; (M3)
+mapped through it is the paper's eq 23 (or 24b), so this is the paper's model with a history that is local
+to each bond.)",
+    .restrictions = R"(- 2D and 3D; the paper's 1D form (bars of area A) is not available.
+- The influence function is δ/|ξ| whatever the deck says (another value given is an error).
+- The constants are those of a full family: points within a horizon of a free surface are softer (no
+  surface correction yet), and the lattice sums of a full family differ from the integrals by a few percent.
+- The bulk modulus does not relax; the thermal expansion coefficient does not depend on temperature.
+- The distortional part of (M1) is an indefinite quadratic form of the bond extensions (a uniform extension
+  of every bond of a family gives b δ Σ e²/|ξ| V − a_μ θ² < 0): stored energy and dissipation of a branch are
+  non-negative for homogeneous deformations, not for every nonlocal state. This is a property of the paper's
+  model.
+- At most 20 Prony terms. Memory per bond: (terms + 2) × 8 bytes of history and 4 bytes of partner-bond index;
+  three point fields exchanged after each step's start.
+- The second-order update is stable only for Δt < 2 a_T τ_k of every term.
+- Damage, when given, uses the mechanical stretch; θ is not recomputed for the bonds that break.)",
+    .further_references = {"Madenci & Oterkus, Peridynamic Theory and Its Applications, Springer (2014)",
+                           "Williams, Landel & Ferry, J. Am. Chem. Soc. 77 (1955) 3701-3707"},
+    .example = R"(materials:
+  epoxy:
+    model: thermoviscoelastic
+    density: 1810 kg/m^3
+    bulk_modulus: 583 MPa
+    shear_modulus: 269 MPa
+    thermal_expansion: 5e-5 1/K
+    prony_series:
+      - {shear_modulus: 77 MPa, relaxation_time: 1e-4 s}
+      - {shear_modulus: 308 MPa, relaxation_time: 1e-3 s}
+      - {shear_modulus: 577 MPa, relaxation_time: 1e-2 s})",
+  };
+  return {.name = name,
+          .description = "thermoviscoelastic ordinary state-based solid (Madenci-Oterkus): Prony shear, WLF",
+          .reference = "Madenci & Oterkus, J. Mech. Phys. Solids (2017), thermoviscoelastic deformation",
+          .keys = {{.key = "prony_series", .type = ValueType::sequence,
+                    .description = "relaxing shear terms μ_k exp(−t/τ_k) (see materials.<name>.prony_series[i]); "
+                                   "omit for an elastic solid"},
+                   {.key = "time_integration", .type = ValueType::choice, .default_yaml = "exact",
+                    .description = "update of the viscous extensions: exact (exponential integrator) or "
+                                   "second_order (the paper's eq 24b)",
+                    .choices = {"exact", "second_order"}},
+                   {.key = "surface_correction", .type = ValueType::boolean, .default_yaml = "true",
+                    .description = "each point's d, b and a_μ/b from its own family under isotropic strain and simple "
+                                   "shear (corrects truncated families at surfaces and the lattice's sums); false: "
+                                   "the constants of a full continuous family"},
+                   {.key = "wlf", .type = ValueType::mapping,
+                    .description = "WLF shift of the relaxation times (see materials.<name>.wlf); needs a temperature field"},
+                   thermal_expansion_key()},
+          .sections = {{"materials.<name>.prony_series[i]", "one relaxing shear term",
+                        {{.key = "shear_modulus", .unit = Unit::pressure, .range = positive,
+                          .description = "μ_k (Pa)", .required = true},
+                         {.key = "relaxation_time", .unit = Unit::time, .range = positive,
+                          .description = "τ_k (s) at the WLF reference temperature", .required = true}}},
+                       {"materials.<name>.wlf", "Williams–Landel–Ferry shift a_T of every relaxation time",
+                        {{.key = "c1", .range = positive, .description = "c1 (-)", .required = true},
+                         {.key = "c2", .unit = Unit::temperature, .range = positive, .description = "c2 (K)", .required = true},
+                         {.key = "reference_temperature", .unit = Unit::temperature, .range = positive,
+                          .description = "T0 (K), where a_T = 1", .required = true}}}},
+          .doc = doc,
+          .influence = "inverse_distance",
+          .check = check};
+}
+
+}  // namespace peridot
