@@ -185,6 +185,33 @@ TEST(Neighborhood, SimpleCubicFamilyHas122BondsAndListsAreSymmetricAndSorted) {
   for (auto [i, j] : pairs) EXPECT_TRUE(pairs.count({j, i})) << i << " → " << j << " has no reverse";
 }
 
+// δ a whole number of spacings (δ = 3Δx, as Madenci & Oterkus use): the bonds of length exactly δ are in every
+// family, whatever the round-off of the coordinates (before the search widened its cutoff by 1e-10, a 2D plate at
+// δ = 2Δx had families of 10 to 12 bonds in stripes, and a uniform strain relaxed to a striped strain field).
+TEST(Neighborhood, WholeNumberHorizonGivesEveryInteriorPointTheSameFamily) {
+  for (int m : {2, 3}) {
+    testing::BlockSetup setup;
+    setup.dimension = 2;
+    setup.cells[0] = 40, setup.cells[1] = 20;
+    setup.spacing = 0.0075;  // coordinates (i + ½)·0.0075 are not exact in binary
+    setup.horizon_factor = m;
+    const Problem p = testing::box_problem(setup);
+    const Discretization disc = discretize(p);
+    const BondList bonds = build_neighborhood(disc, options_for(p));
+    const double delta = m * setup.spacing;
+    // Lattice vectors of |n| ≤ m in 2D: 12 for m = 2, 28 for m = 3.
+    const std::size_t full = m == 2 ? 12 : 28;
+    int interior = 0;
+    for (std::size_t i = 0; i < disc.num_points(); ++i) {
+      const Vec3 x = disc.x.get(i);
+      if (x.x < delta || x.y < delta || x.x > 40 * setup.spacing - delta || x.y > 20 * setup.spacing - delta) continue;
+      EXPECT_EQ(bonds.offsets[i + 1] - bonds.offsets[i], full) << "m = " << m << ", point " << i;
+      ++interior;
+    }
+    EXPECT_GT(interior, 100);
+  }
+}
+
 TEST(Neighborhood, PrecracksRemoveEveryCrossingBond) {
   testing::BlockSetup setup;
   setup.dimension = 2;

@@ -5,8 +5,10 @@
 // loops), and per point
 //   (M1) θ = d δ Σ s V,  W = (a_κ − a_μ) θ² + b δ Σ |ξ| s² V,  t = (2δ/|ξ|) [d (a_κ − a_μ) θ + b e]   (eqs 4–8)
 // with 3D: a_κ = κ/2, a_μ = 5μ/6, b = 15μ/(2πδ⁵), d = 9/(4πδ⁴); 2D (thickness h): a_κ = κ/2, a_μ = μ,
-// b = 6μ/(πhδ⁴), d = 2/(πhδ³), κ the in-plane bulk modulus (docs/algorithms.md §13 checks the calibration; the
-// paper's eq 7b prints a_κ = κ, a_μ = 2μ, twice these, which does not reproduce κ under isotropic strain).
+// b = 6μ/(πhδ⁴), d = 2/(πhδ³), κ the in-plane bulk modulus of K and the glassy μ0 (docs/algorithms.md §13 checks
+// the calibration; the paper's eq 7b prints a_κ = κ, a_μ = 2μ, twice these, which does not reproduce κ under
+// isotropic strain). With surface_correction (the default) d, the scale g of b and r = a_μ/b are each point's own
+// (calibrate): exact θ and energy of its family under isotropic strain and simple shear.
 // Shear relaxes as a Prony series μ(t) = μ∞ + Σ_k μ_k exp(−t/τ_k); the bulk stays elastic. a_μ and b scale with
 // μ, so a_μ/b = r is a constant of the geometry and each branch k is a Maxwell element on the distortional
 // form: with e^v_k the viscous extension of branch k per bond (0 at t = 0),
@@ -19,16 +21,17 @@
 // and (M3) mapped through s^μ is its eq 23 (eq 24b): the same model, with a history that is local per bond.
 // WLF (eq 16, as thermorheologically simple materials shift): τ_k(T) = a_T τ_k, log₁₀ a_T = −c1 (T − T0)/(c2 + T − T0).
 // Per step (start_step) the branches' part of (M2) is gathered into per-point P, Q, R and per-bond A:
-//   (M4) t = (2δ/|ξ|) [P e + Q θ + R − A],  P = b0 − B, Q = d (a_κ − a_μ0) + r d B, R = r d A_i,
-//        B = Σ b_k β_k, A = Σ b_k (ε_k e^v_k,n + (1 − ε_k − β_k) e_n), A_i = Σ b_k (ε_k θ^v_k,n + (1 − ε_k − β_k) θ_n),
+//   (M4) t = (2δ/|ξ|) [P e + Q θ + R − A],  P = g (b0 − B), Q = d (a_κ − r g b0) + r d g B, R = r d g A_i,
+//        B = Σ b_k β_k, A = g Σ b_k (ε_k e^v_k,n + (1 − ε_k − β_k) e_n), A_i = Σ b_k (ε_k θ^v_k,n + (1 − ε_k − β_k) θ_n),
 // so that an evaluation costs what an lps one does, whatever the number of terms.
-// (M5) stored energy W = (a_κ − a_μ∞) θ² + b∞ δ Σ e²/|ξ| V + Σ_k [b_k δ Σ (e − e^v_k)²/|ξ| V − r b_k θ(e − e^v_k)²];
+// (M5) stored energy W = (a_κ − a_μ∞) θ² + b∞ δ Σ e²/|ξ| V + Σ_k [b_k δ Σ (e − e^v_k)²/|ξ| V − r b_k θ(e − e^v_k)²]
+//      (every b with the point's g);
 // (M6) dissipation Σ_k (2/τ_k) ∫ W_k dt, W_k the k-th bracket of (M5), integrated exactly over the step for
 //      e linear in time. The distortional form of (M1) is indefinite (a uniform e gives b δ Σ e²/|ξ| V − a_μ θ² < 0):
 //      W_k and the dissipation are non-negative for homogeneous deformations, not for every nonlocal state.
 // History: MaterialHistory::bond[k] = e^v_k (k < N), bond[N] = e_n, bond[N+1] = A (the step's, start_step);
-// point[0..2] = P, Q, R (the step's), point[3], point[4] = Σ_k r b_k θ^v_k and Σ_k r b_k (θ^v_k)² (committed);
-// point constant [0] = d per point.
+// point[0..2] = P, Q, R (the step's), point[3], point[4] = Σ_k r g b_k θ^v_k and Σ_k r g b_k (θ^v_k)² (committed);
+// point constants [0], [1], [2] = d, g, r per point.
 #include <array>
 #include <cstdint>
 #include <string_view>

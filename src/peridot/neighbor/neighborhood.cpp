@@ -86,8 +86,15 @@ class NeighborSearch {
   NeighborSearch(const Discretization& disc, const NeighborhoodOptions& options) : disc_(disc), options_(options) {
     const double max_horizon = *std::max_element(options.horizon_of_block.begin(), options.horizon_of_block.end());
     beyond_ = options.bond_beyond_horizon ? options.partial_volume_radius : 0.0;
-    grid_ = bin_points(disc, max_horizon + beyond_);
+    // Cells a little larger than the widened cutoff below, so that every bond it admits is in the 3×3(×3) block.
+    grid_ = bin_points(disc, (max_horizon + beyond_) * (1 + 4 * cutoff_tolerance));
   }
+
+  /// A bond of length δ within this relative round-off is in the family. Without it, a horizon that is a
+  /// whole number of spacings (δ = 3Δx, as in many papers) keeps or drops the bonds of length exactly δ by the
+  /// round-off of each point's coordinates, and the families differ from point to point (a plate under uniform
+  /// strain then relaxes to a striped strain field).
+  static constexpr double cutoff_tolerance = 1e-10;
 
   /// Calls visit(j) for every neighbour j of point i (unsorted).
   template <class Visit>
@@ -105,7 +112,7 @@ class NeighborSearch {
             if (other == i) continue;
             const Vec3 xj = disc_.x.get(other);
             const double horizon = std::max(horizon_i, options_.horizon_of_block[disc_.block[other]]);
-            const double cutoff = horizon + beyond_;
+            const double cutoff = (horizon + beyond_) * (1 + cutoff_tolerance);
             const Vec3 bond = xj - xi;
             if (dot(bond, bond) > cutoff * cutoff) continue;
             if (beyond_ > 0 && partial_volume_factor(norm(bond), horizon, options_.partial_volume_radius) <= 0) continue;

@@ -30,6 +30,12 @@ SolverInfo DynamicRelaxation::info() {
                    {.key = "ramp", .type = ValueType::boolean, .default_yaml = "true",
                     .description = "scale prescribed displacements and body forces by the load factor k/N (false: take "
                                    "them as the expressions give them at t_k)"},
+                   {.key = "load_history", .type = ValueType::choice, .default_yaml = "continuous",
+                    .description = "continuous: each step's loads are those of t_k; steps: the loads jump at the load "
+                                   "step times and hold between them (creep and relaxation tests): t = 0 is solved with "
+                                   "no time passing, and each step first creeps over Δt under the previous loads, then "
+                                   "takes its own with no time passing",
+                    .choices = {"continuous", "steps"}},
                    {.key = "tolerance", .default_yaml = "1e-8", .range = positive,
                     .description = "equilibrium when the force residual on the free dofs is at most this fraction of the "
                                    "largest of the support reactions, the applied body force and the step's initial "
@@ -77,7 +83,8 @@ DynamicRelaxation::DynamicRelaxation(Simulation& sim)
       ramp_(sim.problem().solver.parameters.boolean("ramp")),
       tolerance_(sim.problem().solver.parameters.number("tolerance")),
       max_iterations_(sim.problem().solver.parameters.integer("max_iterations")),
-      density_factor_(sim.problem().solver.parameters.number("density_factor")) {
+      density_factor_(sim.problem().solver.parameters.number("density_factor")),
+      stepped_loads_(sim.problem().solver.parameters.text("load_history") == "steps") {
   std::vector<double> k;
   stiffness_bound(sim_.model(), k);
   const double factor = density_factor_;
@@ -108,6 +115,15 @@ void DynamicRelaxation::initialize() {
   State& state = sim_.state();
   set_loads(0.0, ramp_ ? 0.0 : 1.0);
   std::fill(state.v.data(), state.v.data() + 3 * state.v.size(), 0.0);
+  load_factor_ = ramp_ ? 0.0 : 1.0;
+  committed_u_ = state.u;
+  accepted_body_force_ = VectorField(state.body_force.size());  // nothing acted before t = 0
+  if (stepped_loads_) {  // the loads of t = 0 act at once: the instantaneous equilibrium
+    iterations_ = 0;
+    broken_ = 0;
+    solve_and_commit(0.0);
+    return;
+  }
   std::string failure;
   try {
     sim_.evaluate(0.0, true);
@@ -117,7 +133,7 @@ void DynamicRelaxation::initialize() {
   sim_.commit(0.0);
   sim_.agree_on_failure(failure);
   committed_u_ = state.u;
-  load_factor_ = ramp_ ? 0.0 : 1.0;
+  accepted_body_force_ = state.body_force;
 }
 
 void DynamicRelaxation::evaluate_residual_force(std::vector<double>& F) {
@@ -126,7 +142,7 @@ void DynamicRelaxation::evaluate_residual_force(std::vector<double>& F) {
   if (sim_.has_correspondence()) set_step_velocity();  // the rate the stress update integrates
   std::string failure;
   try {
-    sim_.evaluate(sim_.time_step(), false);
+    sim_.evaluate(solve_dt_, false);
   } catch (const NumericalError& e) {
     failure = e.what();
   }
@@ -144,7 +160,7 @@ double DynamicRelaxation::applied_force(std::size_t k) const {
 
 void DynamicRelaxation::set_step_velocity() {
   State& state = sim_.state();
-  const double dt = sim_.time_step();
+  const double dt = solve_dt_;
   double* v = state.v.data();
   const double* u = state.u.data();
   const double* u0 = committed_u_.data();
@@ -171,7 +187,11 @@ double DynamicRelaxation::relative_residual(const std::vector<double>& F, double
   const double* f = sim_.state().force.data();
   const double reaction = weighted_norm([&](std::size_t k) { return kind[k] == DofKind::free ? 0.0 : f[k]; });
   const double applied = weighted_norm([&](std::size_t k) { return kind[k] == DofKind::free ? applied_force(k) : 0.0; });
-  const double reference = std::max({reaction, applied, start_norm});
+  // The loads of earlier steps count too: once they are removed (recovery under no load) the body's remaining
+  // forces cancel to a small residual that the round-off of its internal forces, of the scale of those loads,
+  // keeps from going lower.
+  const double reference = std::max({reaction, applied, start_norm, load_scale_});
+  last_load_norm_ = std::max(reaction, applied);
   const double residual = norm(F);
   if (!std::isfinite(residual) || !std::isfinite(reaction) || !std::isfinite(applied))
     return std::numeric_limits<double>::quiet_NaN();  // a blow-up anywhere, prescribed dofs included
@@ -204,7 +224,10 @@ std::int64_t DynamicRelaxation::relax() {
       if (comm.first_rank_with(!failure.empty()) < 0) failure = "dynamic relaxation diverged (non-finite residual)";
       sim_.agree_on_failure(failure);
     }
-    if (residual_ <= tolerance_) return iteration;
+    if (residual_ <= tolerance_) {
+      load_scale_ = std::max(load_scale_, last_load_norm_);
+      return iteration;
+    }
     if (iteration >= max_iterations_)
       throw NumericalError(fmt::format(
           "dynamic relaxation did not converge in load step {} (time {:.6g} s, load factor {:.6g}): relative force "
@@ -240,22 +263,36 @@ std::int64_t DynamicRelaxation::relax() {
 
 void DynamicRelaxation::advance() {
   State& state = sim_.state();
+  const double dt = sim_.time_step();
+  const std::int64_t k = state.step + 1;
+  const double t = static_cast<double>(k) * dt;
+  const double factor = ramp_ ? static_cast<double>(k) / static_cast<double>(sim_.total_steps()) : 1.0;
+  state.time = t;
+  iterations_ = 0;
+  broken_ = 0;
+  if (stepped_loads_) {
+    solve_and_commit(dt);  // under the loads of t_{k−1}, still in place
+    load_factor_ = factor;
+    set_loads(t, factor);
+    solve_and_commit(0.0);
+  } else {
+    load_factor_ = factor;
+    set_loads(t, factor);
+    solve_and_commit(dt);
+  }
+  state.step = k;
+}
+
+void DynamicRelaxation::solve_and_commit(double dt) {
+  State& state = sim_.state();
   const Discretization& disc = sim_.discretization();
   const std::size_t owned = sim_.num_owned();
   const auto& kind = sim_.loads().dof_kinds();
-  const double dt = sim_.time_step();
-  const std::int64_t k = state.step + 1;
-  // The forces of the last accepted state, for the external work (trapezoidal over the load step).
+  // The forces of the last accepted state, for the external work (trapezoidal over the change).
   const VectorField force_before = state.force;
-  const VectorField body_before = state.body_force;
+  const VectorField& body_before = accepted_body_force_;  // set_loads may have changed state.body_force
   const VectorField wall_before = sim_.has_walls() ? sim_.wall_force() : VectorField();
-
-  const double t = static_cast<double>(k) * dt;
-  load_factor_ = ramp_ ? static_cast<double>(k) / static_cast<double>(sim_.total_steps()) : 1.0;
-  state.time = t;
-  set_loads(t, load_factor_);
-  iterations_ = 0;
-  broken_ = 0;
+  solve_dt_ = dt;
   // Relax; break what is over-stretched at equilibrium; relax again (relax() restarts the damped motion
   // from rest) until nothing breaks.
   for (std::uint64_t broken = 1; broken > 0; broken_ += broken) {
@@ -265,8 +302,8 @@ void DynamicRelaxation::advance() {
   set_step_velocity();
   sim_.commit(dt);
 
-  // External work over the load step, trapezoidal: the supports' −f V on prescribed dofs, the body and
-  // wall forces on free ones.
+  // External work of the change, trapezoidal: the supports' −f V on prescribed dofs, the body and wall
+  // forces on free ones.
   double* work = sim_.external_work().data();
   const double* volume = disc.volume.data();
   const double* u = state.u.data();
@@ -287,7 +324,7 @@ void DynamicRelaxation::advance() {
       }
     }
   committed_u_ = state.u;
-  state.step = k;
+  accepted_body_force_ = state.body_force;
 }
 
 std::string DynamicRelaxation::describe() const {

@@ -12,8 +12,8 @@
 // Every global sum is reproducible_sum (exact integer accumulation), so the iterates are the same bits
 // on any number of threads and ranks.
 // Convergence (Peridot's choice; the paper runs a fixed count): ‖F V‖ over the free dofs ≤ tolerance ×
-// the largest of ‖R‖ (the supports' reaction, f V on the prescribed dofs), ‖b V‖ (the applied body force)
-// and the residual at the start of the equilibrium. More than max_iterations ends the run with a
+// the largest of ‖R‖ (the supports' reaction, f V on the prescribed dofs), ‖b V‖ (the applied body force),
+// the residual at the start of the equilibrium and the largest ‖R‖ or ‖b V‖ of the equilibria before. More than max_iterations ends the run with a
 // NumericalError naming the load step and the residual reached.
 // Load steps k = 1 … N at times t_k = k·end_time/N (end_time defaults to 1 s): prescribed displacements
 // and body forces are evaluated at t_k and, with ramp (the default), scaled by the load factor k/N.
@@ -22,6 +22,10 @@
 // (inelastic and viscous histories advance once per load step, relaxation runs inside each real step).
 // The state's velocity is the load step's mean, (u_k − u_{k−1})/Δt (also what the correspondence
 // stress update reads as the rate of the step); the fictitious velocity stays internal.
+// With load_history: steps the loads jump at the load step times and hold between them (a creep or
+// relaxation test): t = 0 is relaxed with no time passing (the instantaneous response), and step k relaxes
+// first over Δt under the loads of t_{k−1} (committed over Δt), then, with no time passing, under those of
+// t_k (committed over 0). The temperature field is evaluated at t_k in both.
 #include <cstdint>
 #include <vector>
 
@@ -70,6 +74,9 @@ class DynamicRelaxation final : public TimeIntegrator {
   template <class Value>
   double weighted_norm(Value&& value) const;
   void set_loads(double t, double factor);
+  /// Relaxes, breaks what is over-stretched, relaxes again until nothing breaks, and commits over Δt (the
+  /// real time this equilibrium closes), with the external work of the change from committed_u_.
+  void solve_and_commit(double dt);
 
   Simulation& sim_;
   // The deck's settings (solver section).
@@ -77,11 +84,18 @@ class DynamicRelaxation final : public TimeIntegrator {
   double tolerance_;               ///< relative force residual at equilibrium
   std::int64_t max_iterations_;    ///< per equilibrium
   double density_factor_;          ///< fictitious density / the Gerschgorin bound
+  bool stepped_loads_;             ///< load_history: steps
   std::vector<double> density_;  ///< Λ per point (kg/m³ with Δt = 1)
   VectorField body_force_;       ///< the deck's body force at t_k, before the load factor
   std::vector<double> velocity_, force_, previous_force_;  ///< per owned dof
   VectorField committed_u_;      ///< u at the last accepted load step
+  VectorField accepted_body_force_;  ///< the body force density of the last accepted equilibrium
   double load_factor_ = 0, residual_ = 0;
+  double solve_dt_ = 0;
+  /// The largest of the reaction and applied-force norms at the equilibria so far (a floor of the residual's
+  /// reference), and those of the last residual evaluated.
+  double load_scale_ = 0;
+  mutable double last_load_norm_ = 0;  ///< the real Δt the equilibrium being relaxed closes (0: an instantaneous one)
   std::int64_t iterations_ = 0;
   std::uint64_t broken_ = 0;
 };
