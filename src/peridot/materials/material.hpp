@@ -35,9 +35,14 @@ struct MaterialParams {
   double stable_damping = 0;
 };
 
-/// Most per-point and per-bond arrays a model may declare (static_assert in materials/models.hpp).
+/// Most per-point and per-bond arrays a model may declare (static_assert in materials/models.hpp), and how many
+/// of each the kernels see through KernelFields: the bond loops keep a private copy of KernelFields, which GCC
+/// keeps in registers only while it is small (at 43 pointers the lps_plastic force loop ran 40 % slower). A
+/// model with more bond arrays reads the rest through KernelFields::history.
 inline constexpr int max_point_arrays = 8;
 inline constexpr int max_bond_arrays = 24;
+inline constexpr int kernel_bond_arrays = 4;
+inline constexpr int kernel_point_constant_arrays = 4;
 
 /// What a kernel may read besides its bond: per-point fields indexed by the point, per-bond history by
 /// the bond of that point's family (the partner's bond through BondList::reverse). `point[k]` and
@@ -50,9 +55,11 @@ struct KernelFields {
   /// extension less this stretch times ξ already; a model reads it only for what else it needs.
   const double* thermal_stretch = nullptr;
   const double* point[max_point_arrays] = {};
-  const double* bond[max_bond_arrays] = {};
+  const double* bond[kernel_bond_arrays] = {};  ///< the history's first bond arrays
   /// ModelContext::point_constants[k] (point_constant_arrays), null where no model of the problem has them.
-  const double* point_constant[max_point_arrays] = {};
+  const double* point_constant[kernel_point_constant_arrays] = {};
+  /// All of the history (for the energy of a model with more bond arrays than `bond` holds); null without.
+  const struct MaterialHistory* history = nullptr;
 };
 
 /// A per-point array a model declares: its name (for messages and restart) and its value before the first

@@ -190,8 +190,8 @@ void Thermoviscoelastic::start_step(const ModelContext& ctx, MaterialHistory& hi
   const double* x = ctx.disc->x.data();
   const BondList& bonds = *ctx.bonds;
   const int n = p.terms;
-  const double* previous = history.bond[n].data();
-  double* branch_force = history.bond[n + 1].data();  // A
+  const double* previous = history.bond[1].data();
+  double* branch_force = history.bond[0].data();  // A
   const std::vector<double> shift = shift_factors(ctx, p, range);
   with_dimension(ctx.disc->dimension, [&](auto dim) {
     constexpr int Dim = decltype(dim)::value;
@@ -211,7 +211,7 @@ void Thermoviscoelastic::start_step(const ModelContext& ctx, MaterialHistory& hi
         const double weight = p.horizon / xi * neighbor_volume(ctx, i, j, xi);
         double A = 0;
         for (int k = 0; k < n; ++k) {
-          const double ev = history.bond[k][b];
+          const double ev = history.bond[2 + k][b];
           A += p.bond_modulus[k] * (decay[k] * ev + (1 - decay[k] - ramp[k]) * previous[b]);
           viscous_sum[k] += weight * ev;
         }
@@ -241,7 +241,7 @@ void Thermoviscoelastic::commit(const ModelContext& ctx, const VectorField& u, c
   const double* up = u.data();
   const BondList& bonds = *ctx.bonds;
   const int n = p.terms;
-  double* previous = history.bond[n].data();
+  double* previous = history.bond[1].data();
   const std::vector<double> shift = shift_factors(ctx, p, range);
   with_dimension(ctx.disc->dimension, [&](auto dim) {
     constexpr int Dim = decltype(dim)::value;
@@ -267,7 +267,7 @@ void Thermoviscoelastic::commit(const ModelContext& ctx, const VectorField& u, c
         const double rate = dt > 0 ? (e - previous[b]) / dt : 0.0;
         rate_sum += weight * rate;
         for (int k = 0; k < n; ++k) {
-          double& ev = history.bond[k][b];
+          double& ev = history.bond[2 + k][b];
           const double spring = previous[b] - ev;
           if (dt > 0) square[k] += weight * square_integral(rate, spring, tau[k], dt, one_minus_decay[k], one_minus_decay2[k]);
           spring_sum[k] += weight * spring;

@@ -29,7 +29,8 @@
 // (M6) dissipation Σ_k (2/τ_k) ∫ W_k dt, W_k the k-th bracket of (M5), integrated exactly over the step for
 //      e linear in time. The distortional form of (M1) is indefinite (a uniform e gives b δ Σ e²/|ξ| V − a_μ θ² < 0):
 //      W_k and the dissipation are non-negative for homogeneous deformations, not for every nonlocal state.
-// History: MaterialHistory::bond[k] = e^v_k (k < N), bond[N] = e_n, bond[N+1] = A (the step's, start_step);
+// History: MaterialHistory::bond[0] = A (the step's, start_step: the one array the force reads), bond[1] = e_n,
+// bond[2 + k] = e^v_k;
 // point[0..2] = P, Q, R (the step's), point[3], point[4] = Σ_k r g b_k θ^v_k and Σ_k r g b_k (θ^v_k)² (committed);
 // point constants [0], [1], [2] = d, g, r per point.
 #include <array>
@@ -85,15 +86,14 @@ struct Thermoviscoelastic : ModelBase {
   /// (M4). ω (δ/|ξ| of the block) is not read: the model has its own.
   static double force_scalar(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t b, double e,
                              double xi, double /*omega*/) {
-    const double A = p.terms > 0 ? s.bond[p.terms + 1][b] : 0.0;
-    return 2 * p.horizon / xi * (s.point[0][i] * e + s.point[1][i] * s.theta[i] + s.point[2][i] - A);
+    return 2 * p.horizon / xi * (s.point[0][i] * e + s.point[1][i] * s.theta[i] + s.point[2][i] - s.bond[0][b]);
   }
   /// (M5), the bond part, with the committed e^v.
   static double bond_energy(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t b, double e,
                             double xi, double /*omega*/) {
     double w = p.bond_relaxed * e * e;
     for (int k = 0; k < p.terms; ++k) {
-      const double x = e - s.bond[k][b];
+      const double x = e - s.history->bond[2 + k][b];
       w += p.bond_modulus[k] * x * x;
     }
     return s.point_constant[1][i] * p.horizon * w / xi;

@@ -55,9 +55,12 @@ KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& t
   if (!ctx.thermal_stretch.empty()) s.thermal_stretch = ctx.thermal_stretch.data();
   if (history) {
     for (std::size_t k = 0; k < history->point.size(); ++k) s.point[k] = history->point[k].data();
-    for (std::size_t k = 0; k < history->bond.size(); ++k) s.bond[k] = history->bond[k].empty() ? nullptr : history->bond[k].data();
+    for (std::size_t k = 0; k < history->bond.size() && k < kernel_bond_arrays; ++k)
+      s.bond[k] = history->bond[k].empty() ? nullptr : history->bond[k].data();
+    s.history = history;
   }
-  for (std::size_t k = 0; k < ctx.point_constants.size(); ++k) s.point_constant[k] = ctx.point_constants[k].data();
+  for (std::size_t k = 0; k < ctx.point_constants.size() && k < kernel_point_constant_arrays; ++k)
+    s.point_constant[k] = ctx.point_constants[k].data();
   PERIDOT_REQUIRE(ctx.bond_history_arrays() == 0 || s.bond[0], "an inelastic model needs the material history");
   PERIDOT_REQUIRE(ctx.point_arrays() == 0 || s.point[0], "a model with point arrays needs the material history");
   return s;
@@ -242,9 +245,11 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
 }
 
 /// Σ_j of the force density on point i from the bonds of the run; Thermal as for run_dilatation, each end's
-/// kernel with its own thermal stretch.
+/// kernel with its own thermal stretch. Not inlined: inlined into the dispatch with both Thermal variants, GCC 12
+/// vectorised the loop of the models with partner-bond history (lps_plastic, lps_viscoelastic) differently, 40–60 %
+/// slower and with other round-off; on its own each instantiation gets the loop it had before the Thermal switch.
 template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool Thermal>
-inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, const typename Model::Params& mp_in,
+[[gnu::noinline]] void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, const typename Model::Params& mp_in,
                       const KernelFields& s_in, std::size_t i, double f[3]) {
   const SameBlockRun run = run_in;  // private copies (SameBlockRun)
   const MaterialParams p = p_in;
@@ -264,11 +269,9 @@ inline void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, co
     double dy0, dy1, dy2, xi, length;
     run_bond_geometry<Dim>(run, x_i, u_i, j, dy0, dy1, dy2, xi, length);
     const double e = length - xi;
-    double e_i = e, e_j = e, e_bond = e;
-    if constexpr (Thermal) {
-      e_i = e - s.thermal_stretch[i] * xi, e_j = e - s.thermal_stretch[j] * xi;
-      e_bond = e - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi;
-    }
+    const double e_i = Thermal ? e - s.thermal_stretch[i] * xi : e;
+    const double e_j = Thermal ? e - s.thermal_stretch[j] * xi : e;
+    const double e_bond = Thermal ? e - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi : e;
     const double omega = influence_of<Influence>(xi, p.horizon);
     const std::uint64_t partner_bond = reads_partner_bond ? run.reverse[b] : 0;
     const double t = Model::force_scalar(mp, s, i, b, e_i, xi, omega) +
