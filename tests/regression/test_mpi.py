@@ -23,6 +23,8 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/mpi_correspondence_wall.yaml", "correspondence J2 with hourglass control on an anvil"),
     ("tests/regression/decks/mpi_symmetry_wall.yaml", "correspondence J2 on an anvil with contact: symmetry, released"),
     ("tests/regression/decks/relaxation_notch.yaml", "dynamic relaxation in load steps, bonds breaking between equilibria"),
+    ("tests/regression/decks/thermoviscoelastic_small.yaml",
+     "thermoviscoelastic with WLF and thermal strain in a temperature gradient, relaxation with stepped loads"),
 ]
 RANKS = [1, 2, 3, 4]
 

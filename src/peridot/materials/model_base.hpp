@@ -27,6 +27,8 @@ struct ModelBase {
   static constexpr bool has_bond_kernel = true;
   /// Needs θ of every point before the force (a dilatation pass over the bonds).
   static constexpr bool uses_dilatation = false;
+  /// Has a start_step that writes per-bond arrays (they are exchanged to the partner-bond slots after it).
+  static constexpr bool has_start_step = false;
   /// Per-bond history arrays (MaterialHistory::bond[0 … n−1]); the partner's bond j → i is then indexed too.
   /// A model whose count depends on its parameters gives the most it may need here and the count of a block
   /// in `static int bond_history_count(const Params&)`.

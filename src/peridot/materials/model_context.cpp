@@ -16,6 +16,12 @@ bool ModelContext::any_dilatation() const {
   });
 }
 
+bool ModelContext::any_start_step() const {
+  return std::any_of(params.begin(), params.end(), [](const MaterialParams& p) {
+    return with_model(p.model, [](auto m) { return decltype(m)::has_start_step; });
+  });
+}
+
 bool ModelContext::any_damage() const {
   return std::any_of(params.begin(), params.end(), [](const MaterialParams& p) { return std::isfinite(p.critical_stretch); });
 }

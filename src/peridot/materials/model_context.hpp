@@ -56,6 +56,8 @@ struct ModelContext {
   }
 
   bool any_dilatation() const;
+  /// Whether a block's model has a start_step (Model::has_start_step).
+  bool any_start_step() const;
   bool any_damage() const;
   /// The most per-bond history arrays any block's model needs (0: no inelastic model).
   int bond_history_arrays() const;

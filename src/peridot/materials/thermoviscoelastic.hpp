@@ -47,6 +47,7 @@ struct Thermoviscoelastic : ModelBase {
   static constexpr std::string_view name = "thermoviscoelastic";
   static ModelInfo info();
   static constexpr bool uses_dilatation = true;
+  static constexpr bool has_start_step = true;
   static constexpr int max_terms = 20;
   /// The most a block may need (max_terms + 2); bond_history_count gives a block's.
   static constexpr int bond_history_arrays = max_terms + 2;

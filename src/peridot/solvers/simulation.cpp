@@ -98,6 +98,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   if (problem_.temperature) temperature_ = std::make_unique<TemperatureField>(*problem_.temperature, disc_);
 
   any_dilatation_ = model_.any_dilatation();
+  any_start_step_ = model_.any_start_step();
   any_damage_ = model_.any_damage();
   history_arrays_ = model_.bond_history_arrays();
   partner_arrays_ = model_.partner_point_arrays();
@@ -166,7 +167,7 @@ void Simulation::evaluate(double dt, bool break_bonds) {
   }
   if (has_history_) {
     model_.set_time_step(dt);
-    if (dt != started_dt_) {  // the first evaluation of a step (or a retry with another Δt)
+    if (any_start_step_ && dt != started_dt_) {  // the first evaluation of a step (or a retry with another Δt)
       start_step(model_, state_.history, dt);
       exchange_partner_bonds();
       started_dt_ = dt;

@@ -210,7 +210,7 @@ class Simulation {
   std::int64_t total_steps_ = 0;
   std::unique_ptr<TimeIntegrator> integrator_;
   std::vector<double> work_;  ///< J, external work done on each point since t = 0
-  bool any_dilatation_ = false, any_damage_ = false;
+  bool any_dilatation_ = false, any_damage_ = false, any_start_step_ = false;
   /// The point arrays the present models' partners read (ModelContext::partner_point_arrays).
   std::vector<int> partner_arrays_;
   /// The point arrays that keep what θ lost to breaking bonds (ModelContext::released_extension_arrays).
