@@ -16,9 +16,10 @@ class TemperatureField {
  public:
   TemperatureField(const TemperatureSpec& spec, const Discretization& disc);
 
-  /// T (K) of every point of the discretization at time t, into `temperature` (sized to the points). A field
-  /// that does not depend on t is evaluated once; later calls leave `temperature` as it is.
-  void evaluate(double t, std::vector<double>& temperature);
+  /// T (K) of every point of the discretization at time t, into `temperature` (sized to the points); returns
+  /// whether it wrote. A field that does not depend on t is evaluated once; later calls leave `temperature` as it
+  /// is and return false.
+  bool evaluate(double t, std::vector<double>& temperature);
   /// T_ref (K).
   double reference() const { return reference_; }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "peridot/materials/bond_loop.hpp"
+#include "peridot/materials/maxwell_element.hpp"
 #include "peridot/materials/model_context.hpp"
 
 namespace peridot {
@@ -52,10 +53,8 @@ void LpsViscoelastic::commit(const ModelContext& ctx, const VectorField& u, cons
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double ed = mechanical_extension(ctx, i, g) - theta[i] * g.xi * p.inverse_dilatation_factor;
         if (dt > 0) {  // (V4)
-          const double rate_tau = (ed - previous[b]) / dt * tau;  // ρτ
-          const double z0 = previous[b] - back[b] - rate_tau;
-          const double integral = rate_tau * rate_tau * dt + 2 * rate_tau * tau * z0 * one_minus_decay +
-                                  z0 * z0 * 0.5 * tau * one_minus_decay2;
+          const double integral = maxwell_square_integral((ed - previous[b]) / dt, previous[b] - back[b], tau, dt,
+                                                          one_minus_decay, one_minus_decay2);
           dissipated += dashpot * influence(block.influence, g.xi, block.horizon) * integral * neighbor_volume(ctx, i, j, g.xi);
         }
         back[b] = back_extension(p, s, b, ed);  // reads bond b only, then overwrites it

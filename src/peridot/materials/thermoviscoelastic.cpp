@@ -11,6 +11,7 @@
 
 #include "peridot/deck/map_reader.hpp"
 #include "peridot/materials/bond_loop.hpp"
+#include "peridot/materials/maxwell_element.hpp"
 #include "peridot/materials/model_context.hpp"
 
 namespace peridot {
@@ -41,14 +42,6 @@ Calibration calibration(const ElasticConstants& elastic, double mu_glassy, doubl
           2 / (pi * h * std::pow(delta, 3))};
 }
 
-/// ∫₀^Δt x(t)² dt for x(t) = ρτ + (x₀ − ρτ) e^{−t/τ}, i.e. ẋ = ρ − x/τ: with a = ρτ, c = x₀ − ρτ,
-/// a²Δt + 2acτ(1 − ε) + c²(τ/2)(1 − ε²); 1 − ε and 1 − ε² passed in (expm1, so that Δt ≪ τ keeps its digits).
-inline double square_integral(double rate, double start, double tau, double dt, double one_minus_decay,
-                              double one_minus_decay2) {
-  const double a = rate * tau, c = start - a;
-  return a * a * dt + 2 * a * c * tau * one_minus_decay + c * c * 0.5 * tau * one_minus_decay2;
-}
-
 }  // namespace
 
 Thermoviscoelastic::Params Thermoviscoelastic::resolve(const MaterialSpec& spec, const Problem& problem,
@@ -58,21 +51,21 @@ Thermoviscoelastic::Params Thermoviscoelastic::resolve(const MaterialSpec& spec,
   PERIDOT_REQUIRE(block.influence == InfluenceKind::inverse_distance, "thermoviscoelastic: the deck sets Ω = δ/|ξ|");
   const double delta = block.horizon;
   const double mu_relaxed = spec.elastic.shear_modulus;
-  double mu_glassy = mu_relaxed;
-  for (int k = 0; spec.parameters.has(fmt::format("prony_series[{}].shear_modulus", k)); ++k)
-    mu_glassy += spec.parameters.number(fmt::format("prony_series[{}].shear_modulus", k));
-  const Calibration c = calibration(spec.elastic, mu_glassy, delta, problem);
   Params p;
-  p.horizon = delta;
-  p.dilatation_constant = c.d;
-  for (int k = 0;; ++k) {
+  double mu_glassy = mu_relaxed;
+  for (int k = 0;; ++k) {  // μ_k into bond_modulus until the calibration below makes them b_k
     const std::string item = fmt::format("prony_series[{}].", k);
     if (!spec.parameters.has(item + "shear_modulus")) break;
     PERIDOT_REQUIRE(k < max_terms, "the deck check limits the Prony series to max_terms");
-    p.bond_modulus[k] = c.b_per_mu * spec.parameters.number(item + "shear_modulus");
+    p.bond_modulus[k] = spec.parameters.number(item + "shear_modulus");
     p.relaxation_time[k] = spec.parameters.number(item + "relaxation_time");
+    mu_glassy += p.bond_modulus[k];
     p.terms = k + 1;
   }
+  const Calibration c = calibration(spec.elastic, mu_glassy, delta, problem);
+  for (int k = 0; k < p.terms; ++k) p.bond_modulus[k] *= c.b_per_mu;
+  p.horizon = delta;
+  p.dilatation_constant = c.d;
   p.bond_relaxed = c.b_per_mu * mu_relaxed;
   p.bond_glassy = c.b_per_mu * mu_glassy;
   p.volumetric = c.a_kappa;
@@ -183,9 +176,23 @@ std::vector<double> shift_factors(const ModelContext& ctx, const Thermoviscoelas
   return shift;
 }
 
+/// Σ_k r g b_k θ^v_k and Σ_k r g b_k (θ^v_k)² of a point into point[3], point[4], θ^v_k = d × viscous_sum[k]:
+/// the committed branches' part of the point energy (M5).
+void store_branch_dilatations(MaterialHistory& history, std::size_t i, const Thermoviscoelastic::Params& p, double d,
+                              double g, double r, const std::array<double, Thermoviscoelastic::max_terms>& viscous_sum) {
+  double sum = 0, square_sum = 0;
+  for (int k = 0; k < p.terms; ++k) {
+    const double theta_v = d * viscous_sum[k];
+    sum += r * g * p.bond_modulus[k] * theta_v;
+    square_sum += r * g * p.bond_modulus[k] * theta_v * theta_v;
+  }
+  history.point[3][i] = sum;
+  history.point[4][i] = square_sum;
+}
+
 }  // namespace
 
-void Thermoviscoelastic::start_step(const ModelContext& ctx, MaterialHistory& history, const MaterialParams& block,
+void Thermoviscoelastic::start_step(const ModelContext& ctx, MaterialHistory& history, const MaterialParams&,
                                     const Params& p, BlockRange range, double dt) {
   const double* x = ctx.disc->x.data();
   const BondList& bonds = *ctx.bonds;
@@ -218,15 +225,10 @@ void Thermoviscoelastic::start_step(const ModelContext& ctx, MaterialHistory& hi
         branch_force[b] = g * A;
         previous_sum += weight * previous[b];
       }
-      double A_i = 0, sum = 0, square_sum = 0;
-      for (int k = 0; k < n; ++k) {
-        const double theta_v = d * viscous_sum[k];
-        A_i += p.bond_modulus[k] * (decay[k] * theta_v + (1 - decay[k] - ramp[k]) * d * previous_sum);
-        sum += r * g * p.bond_modulus[k] * theta_v;  // as commit leaves them (a history set otherwise too)
-        square_sum += r * g * p.bond_modulus[k] * theta_v * theta_v;
-      }
-      history.point[3][i] = sum;
-      history.point[4][i] = square_sum;
+      double A_i = 0;
+      for (int k = 0; k < n; ++k)
+        A_i += p.bond_modulus[k] * (decay[k] * d * viscous_sum[k] + (1 - decay[k] - ramp[k]) * d * previous_sum);
+      store_branch_dilatations(history, i, p, d, g, r, viscous_sum);  // as commit leaves them (a history set otherwise too)
       history.point[0][i] = g * (p.bond_glassy - B);
       history.point[1][i] = d * (p.volumetric - r * g * p.bond_glassy) + r * d * g * B;
       history.point[2][i] = r * d * g * A_i;
@@ -269,7 +271,7 @@ void Thermoviscoelastic::commit(const ModelContext& ctx, const VectorField& u, c
         for (int k = 0; k < n; ++k) {
           double& ev = history.bond[2 + k][b];
           const double spring = previous[b] - ev;
-          if (dt > 0) square[k] += weight * square_integral(rate, spring, tau[k], dt, one_minus_decay[k], one_minus_decay2[k]);
+          if (dt > 0) square[k] += weight * maxwell_square_integral(rate, spring, tau[k], dt, one_minus_decay[k], one_minus_decay2[k]);
           spring_sum[k] += weight * spring;
           ev = decay[k] * ev + (1 - decay[k] - ramp[k]) * previous[b] + ramp[k] * e;  // (M3)
           viscous_sum[k] += weight * ev;
@@ -277,20 +279,14 @@ void Thermoviscoelastic::commit(const ModelContext& ctx, const VectorField& u, c
         previous[b] = e;
       }
       const double d = ctx.point_constants[0][i], g = ctx.point_constants[1][i], r = ctx.point_constants[2][i];
-      double dissipated = 0, sum = 0, square_sum = 0;
-      for (int k = 0; k < n; ++k) {
-        if (dt > 0) {  // (M6): (2 g b_k/τ_k)[δ Σ ∫x²/|ξ| V − r ∫θ(x)² dt], θ(x) = d × the sums above
-          const double theta_square =
-              square_integral(d * rate_sum, d * spring_sum[k], tau[k], dt, one_minus_decay[k], one_minus_decay2[k]);
-          dissipated += 2 * g * p.bond_modulus[k] / tau[k] * (square[k] - r * theta_square);
-        }
-        const double theta_v = d * viscous_sum[k];
-        sum += r * g * p.bond_modulus[k] * theta_v;
-        square_sum += r * g * p.bond_modulus[k] * theta_v * theta_v;
+      double dissipated = 0;
+      for (int k = 0; k < n && dt > 0; ++k) {  // (M6): (2 g b_k/τ_k)[δ Σ ∫x²/|ξ| V − r ∫θ(x)² dt], θ(x) = d × the sums
+        const double theta_square =
+            maxwell_square_integral(d * rate_sum, d * spring_sum[k], tau[k], dt, one_minus_decay[k], one_minus_decay2[k]);
+        dissipated += 2 * g * p.bond_modulus[k] / tau[k] * (square[k] - r * theta_square);
       }
       history.dissipation[i] += dissipated;
-      history.point[3][i] = sum;
-      history.point[4][i] = square_sum;
+      store_branch_dilatations(history, i, p, d, g, r, viscous_sum);
     }
   });
 }

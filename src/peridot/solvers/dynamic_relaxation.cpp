@@ -38,8 +38,9 @@ SolverInfo DynamicRelaxation::info() {
                     .choices = {"continuous", "steps"}},
                    {.key = "tolerance", .default_yaml = "1e-8", .range = positive,
                     .description = "equilibrium when the force residual on the free dofs is at most this fraction of the "
-                                   "largest of the support reactions, the applied body force and the step's initial "
-                                   "residual (Euclidean norms of f V)"},
+                                   "largest of the support reactions, the applied body force, the step's initial "
+                                   "residual and the largest reaction or body force of the equilibria before "
+                                   "(Euclidean norms of f V)"},
                    {.key = "max_iterations", .type = ValueType::integer, .default_yaml = "100000", .range = at_least_one,
                     .description = "iterations allowed for one equilibrium; more ends the run with an error naming the "
                                    "residual reached"},
@@ -182,7 +183,7 @@ double DynamicRelaxation::norm(const std::vector<double>& w) const {
   return weighted_norm([&](std::size_t k) { return w[k]; });
 }
 
-double DynamicRelaxation::relative_residual(const std::vector<double>& F, double start_norm) const {
+DynamicRelaxation::Residual DynamicRelaxation::relative_residual(const std::vector<double>& F, double start_norm) const {
   const auto& kind = sim_.loads().dof_kinds();
   const double* f = sim_.state().force.data();
   const double reaction = weighted_norm([&](std::size_t k) { return kind[k] == DofKind::free ? 0.0 : f[k]; });
@@ -191,11 +192,11 @@ double DynamicRelaxation::relative_residual(const std::vector<double>& F, double
   // forces cancel to a small residual that the round-off of its internal forces, of the scale of those loads,
   // keeps from going lower.
   const double reference = std::max({reaction, applied, start_norm, load_scale_});
-  last_load_norm_ = std::max(reaction, applied);
   const double residual = norm(F);
+  const double load = std::max(reaction, applied);
   if (!std::isfinite(residual) || !std::isfinite(reaction) || !std::isfinite(applied))
-    return std::numeric_limits<double>::quiet_NaN();  // a blow-up anywhere, prescribed dofs included
-  return reference > 0 ? residual / reference : 0.0;
+    return {std::numeric_limits<double>::quiet_NaN(), load};  // a blow-up anywhere, prescribed dofs included
+  return {reference > 0 ? residual / reference : 0.0, load};
 }
 
 std::int64_t DynamicRelaxation::relax() {
@@ -207,7 +208,8 @@ std::int64_t DynamicRelaxation::relax() {
   evaluate_residual_force(force_);
   const double start = norm(force_);
   for (std::int64_t iteration = 0;; ++iteration) {
-    residual_ = relative_residual(force_, start);
+    const Residual r = relative_residual(force_, start);
+    residual_ = r.relative;
     if (!std::isfinite(residual_)) {
       std::string failure;
       for (std::size_t k = 0; k < dofs && failure.empty(); ++k)
@@ -225,7 +227,7 @@ std::int64_t DynamicRelaxation::relax() {
       sim_.agree_on_failure(failure);
     }
     if (residual_ <= tolerance_) {
-      load_scale_ = std::max(load_scale_, last_load_norm_);
+      load_scale_ = std::max(load_scale_, r.load);
       return iteration;
     }
     if (iteration >= max_iterations_)

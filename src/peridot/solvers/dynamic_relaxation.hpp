@@ -67,8 +67,12 @@ class DynamicRelaxation final : public TimeIntegrator {
   double applied_force(std::size_t k) const;
   /// state().v = (u − u at the last accepted load step)/Δt, ghosts included.
   void set_step_velocity();
-  /// Relative residual of F (see the header) with the supports' reaction from the current force.
-  double relative_residual(const std::vector<double>& F, double start_norm) const;
+  /// Relative residual of F (see the header) with the supports' reaction from the current force, and the load
+  /// norm, the larger of ‖R‖ and ‖b V‖.
+  struct Residual {
+    double relative, load;
+  };
+  Residual relative_residual(const std::vector<double>& F, double start_norm) const;
   /// Euclidean norm of w_k V over the owned dofs (collective, reproducible).
   double norm(const std::vector<double>& w) const;
   template <class Value>
@@ -93,9 +97,8 @@ class DynamicRelaxation final : public TimeIntegrator {
   double load_factor_ = 0, residual_ = 0;
   double solve_dt_ = 0;
   /// The largest of the reaction and applied-force norms at the equilibria so far (a floor of the residual's
-  /// reference), and those of the last residual evaluated.
-  double load_scale_ = 0;
-  mutable double last_load_norm_ = 0;  ///< the real Δt the equilibrium being relaxed closes (0: an instantaneous one)
+  /// reference).
+  double load_scale_ = 0;  ///< the real Δt the equilibrium being relaxed closes (0: an instantaneous one)
   std::int64_t iterations_ = 0;
   std::uint64_t broken_ = 0;
 };

@@ -225,11 +225,8 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
     const std::uint32_t j = run.neighbor[k];
     double dy0, dy1, dy2, xi, length;
     run_bond_geometry<Dim>(run, x_i, u_i, j, dy0, dy1, dy2, xi, length);
-    double e = length - xi, e_bond = e;
-    if constexpr (Thermal) {
-      e_bond = e - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi;
-      e -= s.thermal_stretch[i] * xi;
-    }
+    const double e = Thermal ? length - xi - s.thermal_stretch[i] * xi : length - xi;
+    const double e_bond = Thermal ? length - xi - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi : e;
     double v = run.volume[j];
     if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
     const double term = influence_of<Influence>(xi, p.horizon) * xi * Model::dilatation_extension(s, b, e, xi) * v;
@@ -721,7 +718,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
           }
           const double omega = influence(p.influence, g.xi, p.horizon);
           const std::uint64_t partner_bond = any_history ? reverse[b] : 0;
-          const double e_j = g.e - thermal_stretch(ctx, j) * g.xi;
+          const double e_j = mechanical_extension(ctx, j, g);  // |ξ| and e are the same from j
           const double t_ji = blocks[j] == blocks[i]
                                   ? model.force_scalar(mp, fields, j, partner_bond, e_j, g.xi, omega)
                                   : other_block_force_scalar(ctx, static_cast<std::size_t>(blocks[j]), fields, j,

@@ -140,12 +140,12 @@ void Simulation::apply_initial_state() {
 
 void Simulation::update_temperature() {
   if (!temperature_ || state_.time == temperature_time_) return;
-  temperature_->evaluate(state_.time, model_.temperature);
   temperature_time_ = state_.time;
-  const std::size_t n = disc_.num_points();
+  if (!temperature_->evaluate(state_.time, model_.temperature)) return;  // a field constant in time: as it is
   const bool expands = std::any_of(model_.params.begin(), model_.params.end(),
                                    [](const MaterialParams& p) { return p.thermal_expansion != 0; });
   if (!expands) return;  // no thermal stretch: the bond loops keep their paths without it
+  const std::size_t n = disc_.num_points();
   model_.thermal_stretch.resize(n);
   const double reference = temperature_->reference();
   for (std::size_t i = 0; i < n; ++i)
