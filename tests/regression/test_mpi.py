@@ -25,6 +25,8 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/relaxation_notch.yaml", "dynamic relaxation in load steps, bonds breaking between equilibria"),
     ("tests/regression/decks/thermoviscoelastic_small.yaml",
      "thermoviscoelastic with WLF and thermal strain in a temperature gradient, relaxation with stepped loads"),
+    ("tests/regression/decks/surface_correction_small.yaml",
+     "surface correction of pmb beside lps (factors iterated over ghosts), jitter, bond failure"),
 ]
 RANKS = [1, 2, 3, 4]
 

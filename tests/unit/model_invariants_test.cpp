@@ -26,6 +26,7 @@ struct Case {
   PlaneKind plane;
   std::string model;
   InfluenceKind influence;
+  bool surface_correction = false;
 };
 
 BlockSetup setup_for(const Case& c, double yield_stress = 1e12) {
@@ -42,6 +43,7 @@ BlockSetup setup_for(const Case& c, double yield_stress = 1e12) {
   s.plane = c.plane;
   s.model = c.model;
   s.influence = c.influence;
+  s.parameters.set_boolean("surface_correction", c.surface_correction);
   if (c.dimension == 3) s.cells[0] = s.cells[1] = s.cells[2] = 7;
   else s.cells[0] = s.cells[1] = 12;
   s.jitter = 0.1;  // irregular points: no symmetry helps the sums cancel
@@ -213,6 +215,10 @@ const Case cases[] = {
     {"Lps3dGaussian", 3, PlaneKind::none, "lps", InfluenceKind::gaussian},
     {"Lps2dPlaneStress", 2, PlaneKind::stress, "lps", InfluenceKind::constant},
     {"Lps2dPlaneStrainInverseDistance", 2, PlaneKind::strain, "lps", InfluenceKind::inverse_distance},
+    {"Pmb3dSurfaceCorrection", 3, PlaneKind::none, "pmb", InfluenceKind::constant, true},
+    {"Pmb2dPlaneStressSurfaceCorrection", 2, PlaneKind::stress, "pmb", InfluenceKind::gaussian, true},
+    {"Lps3dSurfaceCorrection", 3, PlaneKind::none, "lps", InfluenceKind::inverse_distance, true},
+    {"Lps2dPlaneStressSurfaceCorrection", 2, PlaneKind::stress, "lps", InfluenceKind::constant, true},
     {"LpsPlastic3d", 3, PlaneKind::none, "lps_plastic", InfluenceKind::constant},
     {"LpsPlastic3dInverseDistance", 3, PlaneKind::none, "lps_plastic", InfluenceKind::inverse_distance},
     {"LpsPlastic2dPlaneStressGaussian", 2, PlaneKind::stress, "lps_plastic", InfluenceKind::gaussian},

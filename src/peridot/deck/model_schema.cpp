@@ -48,6 +48,12 @@ KeySpec thermal_expansion_key() {
                          "of its end point (see temperature)"};
 }
 
+KeySpec surface_correction_key() {
+  return {.key = "surface_correction", .type = ValueType::boolean, .default_yaml = "false",
+          .description = "scale each bond so that every point stores the classical energy of a uniaxial strain along "
+                         "each axis (energy method; points near a free surface have truncated families)"};
+}
+
 std::vector<KeySpec> damage_keys() {
   return {
       {.key = "critical_stretch", .range = positive, .description = "bond breaks beyond this stretch s0",

@@ -59,6 +59,9 @@ std::vector<KeySpec> material_keys(const ModelInfo& model);
 /// The key `thermal_expansion` (α, 1/K, default 0), for the key table of a model whose bonds carry the thermal
 /// stretch α (T − T_ref) of a prescribed temperature field (the ordinary models; the bond loops apply it).
 KeySpec thermal_expansion_key();
+/// The key `surface_correction` (boolean, default false), for the key table of a model whose bond loops apply the
+/// per-bond factor of the energy method (ModelBase::corrects_surfaces; solvers/surface_correction.hpp).
+KeySpec surface_correction_key();
 /// Keys of a material's damage section.
 std::vector<KeySpec> damage_keys();
 /// How critical-stretch damage works, for the model pages (Markdown; the same for every model).

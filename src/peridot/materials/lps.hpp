@@ -10,6 +10,11 @@
 // One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v, α_d) = (3, 3K, 15G) in 3D
 // and (2, 2K′, 8G) in 2D; W = α_v θ²/(2n) + (α_d/2m) Σ ω (e − θξ/n)² V. Since Σ ω ξ (e − θξ/n) V = 0,
 // t = ∂W/∂e exactly.
+// With surface_correction the bond loops hand the kernels ω̃ = G ω (G the bond's factor, solvers/
+// surface_correction.hpp) and m stays the reference Σ ω ξ² V: θ = (n/m) Σ ω̃ ξ e V and
+// W = α_v θ²/(2n) + (α_d/2m) Σ ω̃ (e − θξ/n)² V, whose derivative is
+//   t = (ω̃/m)[α_v θ ξ + α_d (e − κ θξ/n)],  κ = 2 − m̃/m,  m̃ = Σ ω̃ ξ² V
+// (Σ ω̃ ξ (e − θξ/n) V = θ(m − m̃)/n no longer vanishes); κ is a point constant (calibrate).
 #include <cstdint>
 #include <string_view>
 
@@ -33,16 +38,22 @@ struct Lps : ModelBase {
   static constexpr std::string_view name = "lps";
   static ModelInfo info();
   static constexpr bool uses_dilatation = true;
+  static constexpr bool corrects_surfaces = true;
+  /// κ = 2 − m̃/m per point (surface_correction only).
+  static constexpr int point_constant_arrays = 1;
 
-  struct Params : LpsConstants {};
+  struct Params : LpsConstants {
+    bool surface_correction = false;
+  };
   static Params resolve(const MaterialSpec& spec, const Problem& problem, MaterialParams& block);
 
   /// 1/m is precomputed per point: a kernel multiplies, never divides, per bond.
   static double force_scalar(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
                              double e, double xi, double omega) {
     const double theta = s.theta[i];
+    const double reduced = p.surface_correction ? s.point_constant[0][i] * theta : theta;  // κθ
     return omega * s.inverse_m[i] *
-           (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - theta * xi * p.inverse_dilatation_factor));
+           (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - reduced * xi * p.inverse_dilatation_factor));
   }
   static double bond_energy(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
                             double e, double xi, double omega) {
@@ -52,6 +63,8 @@ struct Lps : ModelBase {
   static double point_energy(const Params& p, const KernelFields& s, std::size_t i) {
     return p.alpha_volumetric * s.theta[i] * s.theta[i] / (2 * p.dilatation_factor);
   }
+  /// κ = 2 − m̃/m of every point of a corrected block (1 before the bond factors exist).
+  static void calibrate(ModelContext& ctx, const MaterialParams& block, const Params& p, BlockRange range);
 };
 
 }  // namespace peridot

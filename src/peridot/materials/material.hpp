@@ -24,6 +24,9 @@ struct MaterialParams {
   ElasticConstants elastic;
   /// α (1/K) of a model whose bonds carry thermal strain (thermal_expansion_key), 0 otherwise.
   double thermal_expansion = 0;
+  /// The deck's `surface_correction` of a model that applies the energy method's bond factors
+  /// (ModelBase::corrects_surfaces); false for the others.
+  bool surface_correction = false;
   /// Bond fails when its stretch exceeds this; +∞ without damage.
   double critical_stretch = std::numeric_limits<double>::infinity();
   /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
@@ -54,6 +57,9 @@ struct KernelFields {
   /// α (T − T_ref) per point (ModelContext::thermal_stretch), null without: the kernels receive the
   /// extension less this stretch times ξ already; a model reads it only for what else it needs.
   const double* thermal_stretch = nullptr;
+  /// The surface correction's factor G per bond (ModelContext::bond_scale), null without: the bond loops pass
+  /// ω G as the influence; a model reads it only where it has its own influence (thermoviscoelastic).
+  const double* bond_scale = nullptr;
   const double* point[max_point_arrays] = {};
   const double* bond[kernel_bond_arrays] = {};  ///< the history's first bond arrays
   /// ModelContext::point_constants[k] (point_constant_arrays), null where no model of the problem has them.

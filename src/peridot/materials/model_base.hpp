@@ -29,6 +29,9 @@ struct ModelBase {
   static constexpr bool uses_dilatation = false;
   /// Has a start_step that writes per-bond arrays (they are exchanged to the partner-bond slots after it).
   static constexpr bool has_start_step = false;
+  /// Applies the surface correction's bond factor G (solvers/surface_correction.hpp) when its block asks for it
+  /// (`surface_correction_key()` among its keys): the bond loops then hand its kernels ω G for ω.
+  static constexpr bool corrects_surfaces = false;
   /// Per-bond history arrays (MaterialHistory::bond[0 … n−1]); the partner's bond j → i is then indexed too.
   /// A model whose count depends on its parameters gives the most it may need here and the count of a block
   /// in `static int bond_history_count(const Params&)`.

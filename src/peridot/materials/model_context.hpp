@@ -46,6 +46,9 @@ struct ModelContext {
   /// the point subtracts from its stretch (bond_loop::mechanical_extension); empty when no point has one (no
   /// temperature field, or α = 0 everywhere), and then the bond loops take their paths without it.
   std::vector<double> thermal_stretch;
+  /// Per bond: the surface correction's factor G (solvers/surface_correction.hpp), 1 for the bonds of a block
+  /// without it; empty when no block has one, and then the bond loops take their paths without it.
+  std::vector<double> bond_scale;
 
   /// Adds a block (in block order).
   void add_block(ResolvedMaterial material);

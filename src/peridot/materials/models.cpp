@@ -51,6 +51,10 @@ ResolvedMaterial resolve_material(const MaterialSpec& spec, double horizon, cons
     if (!(p.critical_stretch > 0))
       throw InputError(spec.pos, "materials." + spec.name + ": the critical stretch must be positive");
   }
+  p.surface_correction = with_model(index, [&](auto m) {
+    return decltype(m)::corrects_surfaces && spec.parameters.has("surface_correction") &&
+           spec.parameters.boolean("surface_correction");
+  });
   ModelParams model = with_model(index, [&](auto m) -> ModelParams {
     using Model = decltype(m);
     return ModelParams(std::in_place_index<MaterialModels::index_of<Model>()>, Model::resolve(spec, problem, p));

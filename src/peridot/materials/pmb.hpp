@@ -17,6 +17,8 @@ namespace peridot {
 struct Pmb : ModelBase {
   static constexpr std::string_view name = "pmb";
   static ModelInfo info();
+  /// surface_correction: the bond loops hand the kernels ω G (the pair's micromodulus c0 ω G).
+  static constexpr bool corrects_surfaces = true;
 
   struct Params {
     /// Micromodulus c0 (N/m⁶ in 3D): bond micromodulus c(ξ) = c0 ω(ξ).

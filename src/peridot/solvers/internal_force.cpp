@@ -53,6 +53,7 @@ KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& t
   s.theta = theta.data();
   s.inverse_m = ctx.inverse_weighted_volume.data();
   if (!ctx.thermal_stretch.empty()) s.thermal_stretch = ctx.thermal_stretch.data();
+  if (!ctx.bond_scale.empty()) s.bond_scale = ctx.bond_scale.data();
   if (history) {
     for (std::size_t k = 0; k < history->point.size(); ++k) s.point[k] = history->point[k].data();
     for (std::size_t k = 0; k < history->bond.size() && k < kernel_bond_arrays; ++k)
@@ -72,9 +73,9 @@ namespace {
 
 /// t_ji for a neighbour in another block (interfaces only): dispatch on the neighbour's model.
 inline double other_block_force_scalar(const ModelContext& ctx, std::size_t block, const KernelFields& s, std::size_t j,
-                                       std::uint64_t reverse_bond, double e, double xi) {
+                                       std::uint64_t reverse_bond, double e, double xi, double scale) {
   const MaterialParams& pj = ctx.params[block];
-  const double omega = influence(pj.influence, xi, pj.horizon);
+  const double omega = influence(pj.influence, xi, pj.horizon) * (pj.surface_correction ? scale : 1.0);
   // Bonds between a correspondence block and another model's block are refused at set-up
   // (CorrespondenceBlocks), so an interface bond never reaches a model without a bond kernel.
   return with_model(pj.model, [&](auto model) -> double {
@@ -110,6 +111,21 @@ void with_flags(bool a, bool b, F&& f) {
     if (b) f(std::false_type{}, std::true_type{});
     else f(std::false_type{}, std::false_type{});
   }
+}
+
+/// Runs f(std::bool_constant<scaled>{}) for a model that applies the surface correction's bond factor, and
+/// f(std::false_type{}) for the others (no instantiation with the factor for them).
+template <class Model, class F>
+void with_scale(bool scaled, F&& f) {
+  if constexpr (Model::corrects_surfaces) {
+    if (scaled) return f(std::true_type{});
+  }
+  f(std::false_type{});
+}
+
+/// The surface correction's factor of bond b of a block (1 where the block has none).
+inline double bond_scale(const ModelContext& ctx, const MaterialParams& p, std::uint64_t b) {
+  return p.surface_correction && !ctx.bond_scale.empty() ? ctx.bond_scale[b] : 1.0;
 }
 
 /// Critical stretch of a bond of a point of block `block`: the smaller of its two blocks'.
@@ -206,8 +222,8 @@ template <int Dim>
 
 /// The dilatation sum Σ ω ξ e V over the run, and what the bonds that break now took out of it. Thermal: e less
 /// the free thermal stretch of point i (bond_loop::mechanical_extension), the failure check on the bond's
-/// (bond_mechanical_extension).
-template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool Thermal>
+/// (bond_mechanical_extension). Scaled: ω times the bond's surface-correction factor.
+template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool Thermal, bool Scaled>
 inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_in, const KernelFields& s_in,
                            std::size_t i, double& sum_out, double& lost_out) {
   const SameBlockRun run = run_in;  // private copies (SameBlockRun)
@@ -217,7 +233,7 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
   double x_i[3], u_i[3];
   for (int d = 0; d < 3; ++d) x_i[d] = run.x[3 * i + d], u_i[d] = run.u[3 * i + d];
   double sum = 0, lost = 0;
-  constexpr bool padded_run = Model::bond_history_arrays == 0;
+  constexpr bool padded_run = Model::bond_history_arrays == 0 && !Scaled;
   const std::uint64_t count = padded_run ? padded_length(run.b_end - run.b_begin) : run.b_end - run.b_begin;
 #pragma omp simd reduction(+ : sum, lost)
   for (std::uint64_t k = 0; k < count; ++k) {
@@ -229,7 +245,8 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
     const double e_bond = Thermal ? length - xi - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi : e;
     double v = run.volume[j];
     if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
-    const double term = influence_of<Influence>(xi, p.horizon) * xi * Model::dilatation_extension(s, b, e, xi) * v;
+    const double omega = Scaled ? influence_of<Influence>(xi, p.horizon) * s.bond_scale[b] : influence_of<Influence>(xi, p.horizon);
+    const double term = omega * xi * Model::dilatation_extension(s, b, e, xi) * v;
     const bool intact = run.intact[k] != 0;
     const bool breaks = intact && e_bond > run.break_limit * xi;
     if constexpr (CheckFailure) run.breaking[k] = breaks ? 1.0 : 0.0;
@@ -242,10 +259,10 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
 }
 
 /// Σ_j of the force density on point i from the bonds of the run; Thermal as for run_dilatation, each end's
-/// kernel with its own thermal stretch. Not inlined: inlined into the dispatch with both Thermal variants, GCC 12
+/// kernel with its own thermal stretch, Scaled as for run_dilatation. Not inlined: inlined into the dispatch with both Thermal variants, GCC 12
 /// vectorised the loop of the models with partner-bond history (lps_plastic, lps_viscoelastic) differently, 40–60 %
 /// slower and with other round-off; on its own each instantiation gets the loop it had before the Thermal switch.
-template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool Thermal>
+template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool Thermal, bool Scaled>
 [[gnu::noinline]] void run_force(const SameBlockRun& run_in, const MaterialParams& p_in, const typename Model::Params& mp_in,
                       const KernelFields& s_in, std::size_t i, double f[3]) {
   const SameBlockRun run = run_in;  // private copies (SameBlockRun)
@@ -257,7 +274,7 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
   double x_i[3], u_i[3];
   for (int d = 0; d < 3; ++d) x_i[d] = run.x[3 * i + d], u_i[d] = run.u[3 * i + d];
   double fx = 0, fy = 0, fz = 0;
-  constexpr bool padded_run = Model::bond_history_arrays == 0;
+  constexpr bool padded_run = Model::bond_history_arrays == 0 && !Scaled;
   const std::uint64_t count = padded_run ? padded_length(run.b_end - run.b_begin) : run.b_end - run.b_begin;
 #pragma omp simd reduction(+ : fx, fy, fz)
   for (std::uint64_t k = 0; k < count; ++k) {
@@ -269,7 +286,7 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
     const double e_i = Thermal ? e - s.thermal_stretch[i] * xi : e;
     const double e_j = Thermal ? e - s.thermal_stretch[j] * xi : e;
     const double e_bond = Thermal ? e - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi : e;
-    const double omega = influence_of<Influence>(xi, p.horizon);
+    const double omega = Scaled ? influence_of<Influence>(xi, p.horizon) * s.bond_scale[b] : influence_of<Influence>(xi, p.horizon);
     const std::uint64_t partner_bond = reads_partner_bond ? run.reverse[b] : 0;
     const double t = Model::force_scalar(mp, s, i, b, e_i, xi, omega) +
                      Model::force_scalar(mp, s, j, partner_bond, e_j, xi, omega);
@@ -588,6 +605,7 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
     constexpr int Dim = decltype(dim)::value;
     using Model = decltype(model);
     const double break_limit = fail_bonds ? p.critical_stretch : std::numeric_limits<double>::infinity();
+    const bool scaled = p.surface_correction && fields.bond_scale;  // the AVX-512 loops have no bond factor
     constexpr int released_array = Model::released_extension_array;
     double* released = nullptr;  // what θ lost to the bonds breaking now, where the model keeps it
     if constexpr (released_array >= 0)
@@ -603,13 +621,16 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
         double sum = 0, lost = 0;
-        const bool in_place = vector_path && !thermal &&
+        const bool in_place = vector_path && !thermal && !scaled &&
                               dilatation_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, sum, lost);
         if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             with_flags(fail_bonds, thermal, [&](auto check, auto heated) {
-              run_dilatation<Dim, Model, check.value, kind.value, heated.value>(run, p, fields, i, sum, lost);
+              with_scale<Model>(scaled, [&](auto corrected) {
+                run_dilatation<Dim, Model, check.value, kind.value, heated.value, corrected.value>(run, p, fields, i, sum,
+                                                                                                  lost);
+              });
             });
           });
           if (fail_bonds) scratch.store(broken, run.b_begin, run.b_end);
@@ -619,7 +640,7 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
           if (broken[b]) return;
           const std::uint32_t j = neighbors[b];
           const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
-          const double term = influence(p.influence, g.xi, p.horizon) * g.xi *
+          const double term = influence(p.influence, g.xi, p.horizon) * bond_scale(ctx, p, b) * g.xi *
                               model.dilatation_extension(fields, b, mechanical_extension(ctx, i, g), g.xi) *
                               neighbor_volume(ctx, i, j, g.xi);
           if (fail_bonds && failure.fails(i, j, bond_mechanical_extension(ctx, i, j, g.e, g.xi), g.xi,
@@ -683,6 +704,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
     using Model = decltype(model);
     const double infinity = std::numeric_limits<double>::infinity();
     const double break_limit = fail_bonds ? p.critical_stretch : infinity;
+    const bool scaled = p.surface_correction && fields.bond_scale;  // the AVX-512 loops have no bond factor
     const int chunk = points_per_chunk(range);
 #pragma omp parallel
     {
@@ -693,13 +715,15 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
         double fi[3] = {0, 0, 0};
-        const bool in_place = vector_path && !thermal &&
+        const bool in_place = vector_path && !thermal && !scaled &&
                               force_in_place<Dim, Model>(run, p, mp, fields, i, neighbors, broken, intact, fi);
         if (vector_path && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             with_flags(fail_bonds, thermal, [&](auto check, auto heated) {
-              run_force<Dim, Model, check.value, kind.value, heated.value>(run, p, mp, fields, i, fi);
+              with_scale<Model>(scaled, [&](auto corrected) {
+                run_force<Dim, Model, check.value, kind.value, heated.value, corrected.value>(run, p, mp, fields, i, fi);
+              });
             });
           });
           if (fail_bonds) scratch.store(broken, run.b_begin, run.b_end);
@@ -716,18 +740,19 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
             broken[b] = 1;
             if (!after_force) return;
           }
-          const double omega = influence(p.influence, g.xi, p.horizon);
+          const double scale = bond_scale(ctx, p, b);
+          const double omega = influence(p.influence, g.xi, p.horizon) * scale;
           const std::uint64_t partner_bond = any_history ? reverse[b] : 0;
           const double e_j = mechanical_extension(ctx, j, g);  // |ξ| and e are the same from j
           const double t_ji = blocks[j] == blocks[i]
                                   ? model.force_scalar(mp, fields, j, partner_bond, e_j, g.xi, omega)
                                   : other_block_force_scalar(ctx, static_cast<std::size_t>(blocks[j]), fields, j,
-                                                             partner_bond, e_j, g.xi);
+                                                             partner_bond, e_j, g.xi, ctx.bond_scale.empty() ? 1.0 : ctx.bond_scale[b]);
           const double t = model.force_scalar(mp, fields, i, b, mechanical_extension(ctx, i, g), g.xi, omega) + t_ji;
-          const double scale = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
-          fx += scale * g.y[0];
-          fy += scale * g.y[1];
-          if constexpr (Dim == 3) fz += scale * g.y[2];
+          const double carried = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
+          fx += carried * g.y[0];
+          fy += carried * g.y[1];
+          if constexpr (Dim == 3) fz += carried * g.y[2];
         };
         if (!vector_path)
           for (std::uint64_t b = run.b_begin; b < run.b_end; ++b) general_bond(b);
@@ -757,7 +782,7 @@ void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u
         if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
-        const double omega = influence(p.influence, g.xi, p.horizon);
+        const double omega = influence(p.influence, g.xi, p.horizon) * bond_scale(ctx, p, b);
         sum += model.bond_energy(mp, fields, i, b, mechanical_extension(ctx, i, g), g.xi, omega) *
                neighbor_volume(ctx, i, j, g.xi);
       }
@@ -778,7 +803,7 @@ void stiffness_bound(const ModelContext& ctx, std::vector<double>& k) {
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         const std::uint32_t j = bonds.neighbors[b];
         const double xi = bond_length<Dim>(x, i, j);
-        stiffness += neighbor_volume(ctx, i, j, xi) * p.stable_micromodulus / xi;
+        stiffness += neighbor_volume(ctx, i, j, xi) * p.stable_micromodulus * bond_scale(ctx, p, b) / xi;
       }
       k[i] = stiffness;
     }

@@ -68,6 +68,9 @@ std::string describe_setup(const Simulation& sim) {
   }
   out << fmt::format("bonds            {} directed ({:.1f} per point)\n", static_cast<std::uint64_t>(bonds),
                      disc.num_points() ? bonds / static_cast<double>(disc.num_points()) : 0.0);
+  if (const SurfaceCorrectionResult& c = sim.surface_correction(); c.applied)
+    out << fmt::format("surface correction: uniaxial energies within {:.1f} % of the classical ({:.1f} % uncorrected)\n",
+                       100 * c.largest_deviation, 100 * c.largest_uncorrected);
   for (const NodeSet& set : sim.output_node_sets())
     out << fmt::format("  node set {:<10} {} points\n", set.name, set.points.size());
   const double memory = static_cast<double>(sim.memory_bytes());

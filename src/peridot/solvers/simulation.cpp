@@ -117,6 +117,9 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     model_.inverse_weighted_volume[i] = m > 0 ? 1 / m : 0.0;  // a point without bonds has no dilatation
   }
   calibrate_models(model_);
+  surface_correction_ = correct_surfaces(model_, problem_, state_.history, owned_,
+                                         [&](std::vector<double>& field) { halo_.exchange(field); }, comm_);
+  for (std::vector<double>& constants : model_.point_constants) halo_.exchange(constants);  // a partner's kernel reads them
   loads_ = std::make_unique<Loads>(problem_, disc_, node_sets_);
 
   work_.assign(disc_.num_points(), 0.0);
@@ -401,7 +404,8 @@ std::size_t Simulation::memory_bytes() const {
                         (history_arrays_ > 0 ? 4 /*return-map scratch*/ : 0)) +
       4 + 4;
   const std::size_t per_bond = sizeof(std::uint32_t) + sizeof(std::uint8_t) + history_arrays_ * sizeof(double) +
-                               (bonds_.reverse.empty() ? 0 : sizeof(std::uint32_t));
+                               (bonds_.reverse.empty() ? 0 : sizeof(std::uint32_t)) +
+                               (model_.bond_scale.empty() ? 0 : sizeof(double));
   return n * per_point + (n + 1) * sizeof(std::uint64_t) + nnz * per_bond;
 }
 

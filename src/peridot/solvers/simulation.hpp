@@ -36,6 +36,7 @@
 #include "peridot/damage/critical_stretch.hpp"
 #include "peridot/solvers/correspondence_blocks.hpp"
 #include "peridot/solvers/internal_force.hpp"
+#include "peridot/solvers/surface_correction.hpp"
 #include "peridot/solvers/time_integrator.hpp"
 #include "peridot/state/fields.hpp"
 
@@ -79,6 +80,8 @@ class Simulation {
   const State& state() const { return state_; }
 
   double stable_time_step() const { return stable_dt_; }  ///< without safety factor (s)
+  /// How the surface correction's iteration ended ({0, 0} without one).
+  const SurfaceCorrectionResult& surface_correction() const { return surface_correction_; }
   /// Δt (s) of a step: explicit, the deck's time_step or safety_factor × the stable one, shortened so that
   /// whole steps end at end_time; relaxation, the (real) time between load steps.
   double time_step() const { return dt_; }
@@ -179,6 +182,7 @@ class Simulation {
   Communicator comm_;
   Discretization disc_;
   std::size_t owned_ = 0;
+  SurfaceCorrectionResult surface_correction_;
   std::vector<std::uint32_t> global_index_;
   Halo halo_;
   double collective_seconds_ = 0;  ///< in agree_on_failure
