@@ -25,6 +25,7 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/relaxation_notch.yaml", "dynamic relaxation in load steps, bonds breaking between equilibria"),
     ("tests/regression/decks/thermoviscoelastic_small.yaml",
      "thermoviscoelastic with WLF and thermal strain in a temperature gradient, relaxation with stepped loads"),
+    ("tests/regression/decks/energy_failure_small.yaml", "lps 2D, bonds breaking by their work (damage criterion: energy)"),
 ]
 RANKS = [1, 2, 3, 4]
 
