@@ -1,4 +1,4 @@
-// Energy-based bond failure (damage/energy_failure.hpp, docs/algorithms.md §11): the count N_c against a
+// Energy-based bond failure (damage/energy_failure.hpp, docs/algorithms.md §14): the count N_c against a
 // brute-force count of the bonds crossing one crack cell and the continuum limit; a PMB bond stretched
 // monotonically breaks at the closed-form stretch; compression never breaks; a viscoelastic bond cycled at a
 // constant amplitude accumulates work and breaks in a later cycle; the same bits for 1 and 2 threads.
@@ -55,7 +55,7 @@ double brute_force_crossings(int dimension, double m) {
 
 TEST(CrackCrossings, TwoDimensionsThreeSpacingsIs18BondsAnd36Micropotentials) {
   EXPECT_EQ(crack_crossing_bonds(2, 3.0), 18);
-  EXPECT_EQ(crack_micropotentials(2, 3.0), 36);  // Madenci & Oterkus (2017) say 34 (docs/algorithms.md §11)
+  EXPECT_EQ(crack_micropotentials(2, 3.0), 36);  // Madenci & Oterkus (2017) say 34 (docs/algorithms.md §14)
   EXPECT_EQ(brute_force_crossings(2, 3.0), 18);
   EXPECT_EQ(crack_crossing_bonds(2, 3.015), 18);  // the usual 3.015: the same family
   EXPECT_EQ(crack_crossing_bonds(3, 3.0), 70);

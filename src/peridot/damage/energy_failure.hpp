@@ -1,6 +1,6 @@
 #pragma once
 // Energy-based bond failure (Madenci & Oterkus, J. Mech. Phys. Solids 2017, §6, eqs 26–33; docs/algorithms.md
-// §11): every bond keeps the work done on it by the force states of its two ends,
+// §14): every bond keeps the work done on it by the force states of its two ends,
 //   W = ∫ (t_ij + t_ji) de   (J/m⁶; e the bond's mechanical extension, thermal stretch removed),
 // added up once per accepted step (commit) by the trapezoid rule, W += ½ (T_prev + T)(e − e_prev), exact for a
 // linear bond. A bond in tension breaks, irreversibly, once the energy it holds or has dissipated reaches its

@@ -76,7 +76,7 @@ function (equations (4) and (5) of the pmb page):
 - (D1) 3D: G0 = (π c0 s0²/2) ∫₀^δ ω ξ⁴ dξ, so s0 = √(5G0/(9Kδ)) for ω = 1
 - (D2) 2D, thickness h: G0 = h c0 s0² ∫₀^δ ω ξ³ dξ, so s0 = √(πG0/(3K′δ)) for ω = 1
 
-With `criterion: energy` (Madenci & Oterkus 2017, §6; docs/algorithms.md §11) a bond breaks by the work done on
+With `criterion: energy` (Madenci & Oterkus 2017, §6; docs/algorithms.md §14) a bond breaks by the work done on
 it instead, whatever the model's force law, so that viscous or plastic work counts. Each bond keeps
 W = ∫ (t_ij + t_ji) de (J/m^6): the force states of its two ends times its mechanical extension (thermal
 stretch removed), added once per accepted step by the trapezoid rule. A bond in tension breaks, irreversibly,
