@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -75,21 +77,12 @@ TEST(CrackCrossings, MatchBruteForceForOtherHorizons) {
 
 TEST(CrackCrossings, ApproachTheContinuumLimit) {
   // Bonds crossing a unit area of a continuum of unit density: 2δ³/3 per unit length (2D), πδ⁴/4 per unit
-  // area (3D); the lattice count's relative error falls like 1/m.
-  double previous = 1;
-  for (double m : {10.0, 20.0, 40.0, 80.0}) {
-    const double error = std::abs(crack_crossing_bonds(2, m) / (2 * m * m * m / 3) - 1);
-    EXPECT_LT(error, 1.0 / m) << m;
-    EXPECT_LT(error, previous) << m;
-    previous = error;
-  }
-  previous = 1;
-  for (double m : {5.0, 10.0, 20.0, 40.0}) {
-    const double error = std::abs(crack_crossing_bonds(3, m) / (std::numbers::pi * std::pow(m, 4) / 4) - 1);
-    EXPECT_LT(error, 2.0 / m) << m;
-    EXPECT_LT(error, previous) << m;
-    previous = error;
-  }
+  // area (3D). The lattice count's relative error stays below 0.2/m (not monotonically: it oscillates as
+  // lattice shells enter the family).
+  for (double m : {10.0, 20.0, 40.0, 80.0, 160.0})
+    EXPECT_LT(std::abs(crack_crossing_bonds(2, m) / (2 * m * m * m / 3) - 1), 0.2 / m) << m;
+  for (double m : {5.0, 10.0, 20.0, 40.0})
+    EXPECT_LT(std::abs(crack_crossing_bonds(3, m) / (std::numbers::pi * std::pow(m, 4) / 4) - 1), 0.2 / m) << m;
 }
 
 // ---- one bond -------------------------------------------------------------------------------------------
@@ -204,54 +197,75 @@ TEST(EnergyFailure, CompressionNeverBreaks) {
   EXPECT_TRUE(sim.bonds().broken[0]);
 }
 
-/// The bond's work (J/m⁶) at the end of each triangular cycle 0 → s_a → 0 (20 steps of Δt each), and the
-/// cycle in which it broke (0: none), for lps_viscoelastic with this relaxing fraction.
+/// A 2D plate of lps_viscoelastic sheared cyclically, u_x = γ(t) (y − y_c), γ a triangle 0 → γ_a → 0 per cycle
+/// (20 steps of Δt = τ_b/10): the largest work of any bond at the end of each cycle and at the peak of the
+/// first, and the cycle in which a bond first broke (0: none). Pure shear has no dilatation: the bonds' work is
+/// deviatoric, where the model relaxes.
 struct Cycles {
   std::vector<double> work_after;
   double peak_first = 0;
   int broke_in = 0;
 };
 
-Cycles cycle(double relaxing_fraction, double Gc, int cycles) {
-  Parameters parameters;
-  parameters.set_number("relaxing_fraction", relaxing_fraction);
-  parameters.set_number("relaxation_time", 10e-6);
-  TwoPoints setup("lps_viscoelastic", Gc, parameters);
-  Simulation sim(setup.problem);
+Cycles shear_cycles(double relaxing_fraction, double Gc, int cycles) {
+  testing::BlockSetup s;
+  s.dimension = 2;
+  s.model = "lps_viscoelastic";
+  s.cells[0] = s.cells[1] = 10;
+  s.parameters.set_number("relaxing_fraction", relaxing_fraction);
+  s.parameters.set_number("relaxation_time", 10e-6);
+  Problem p = testing::box_problem(s);
+  p.materials[0].damage.enabled = true;
+  p.materials[0].damage.fracture_energy = Gc;
+  p.materials[0].damage.criterion = DamageCriterion::energy;
+  Simulation sim(p);
   sim.initialize();
-  const double dt = 1e-6, amplitude = 2e-3;
+  const Discretization& disc = sim.discretization();
+  const double dt = 1e-6, amplitude = 2e-3, centre = 5 * s.spacing;
+  auto largest = [&] {
+    const std::vector<double>& w = sim.energy_failure()->work();
+    return *std::max_element(w.begin(), w.end());
+  };
+  auto any_broken = [&] { return std::count(sim.bonds().broken.begin(), sim.bonds().broken.end(), 1) > 0; };
   Cycles result;
   for (int k = 1; k <= cycles && result.broke_in == 0; ++k) {
     for (int n = 1; n <= 20; ++n) {
-      set_stretch(sim, amplitude * (n <= 10 ? n / 10.0 : (20 - n) / 10.0));
+      const double gamma = amplitude * (n <= 10 ? n / 10.0 : (20 - n) / 10.0);
+      for (std::size_t i = 0; i < disc.num_points(); ++i) sim.state().u(i, 0) = gamma * (disc.x(i, 1) - centre);
       sim.evaluate(dt, true);
-      if (sim.bonds().broken[0]) {
+      if (any_broken()) {
         result.broke_in = k;
         break;
       }
       sim.commit(dt);
-      if (k == 1) result.peak_first = std::max(result.peak_first, sim.energy_failure()->work()[0]);
+      if (k == 1) result.peak_first = std::max(result.peak_first, largest());
     }
-    result.work_after.push_back(sim.energy_failure()->work()[0]);
+    result.work_after.push_back(largest());
   }
   return result;
 }
 
-TEST(EnergyFailure, ViscoelasticBondAccumulatesWorkUnderCyclesAndBreaksLater) {
-  // Elastic (nothing relaxes): each cycle gives its work back. Viscoelastic: each cycle dissipates, the
-  // work grows cycle after cycle at the same amplitude, and a threshold above the first cycle's peak is
-  // reached in a later cycle, where a stretch criterion would have broken in the first or never.
-  const Cycles elastic = cycle(0.0, 1e9, 4);
+TEST(EnergyFailure, ViscoelasticBondsAccumulateWorkUnderCyclesAndBreakLater) {
+  // Nothing relaxes: each cycle gives its work back. Relaxing: each cycle dissipates, the work grows cycle
+  // after cycle at the same amplitude, and a threshold above the first cycle's peak is reached in a later
+  // cycle (a stretch criterion would break in the first cycle or never).
+  const Cycles elastic = shear_cycles(0.0, 1e9, 3);
   for (double w : elastic.work_after) EXPECT_LT(std::abs(w), 1e-9 * elastic.peak_first);
-  const Cycles relaxing = cycle(0.6, 1e9, 6);
+  const Cycles relaxing = shear_cycles(0.6, 1e9, 6);
+  ASSERT_GT(relaxing.work_after[0], 1e-3 * relaxing.peak_first);
   for (std::size_t k = 1; k < relaxing.work_after.size(); ++k) EXPECT_GT(relaxing.work_after[k], relaxing.work_after[k - 1]);
-  ASSERT_GT(relaxing.work_after[0], 0);
-  // Gc for a threshold between the first peak and the peak of the fourth cycle (≈ its dissipation so far + a peak).
-  const double target = relaxing.peak_first + 2.5 * relaxing.work_after[0];
-  const double Gc = target * volume * volume * 10 / (2 * spacing * spacing);  // τ = 2 Gc Δx²/10 = target V²
-  const Cycles breaking = cycle(0.6, Gc, 8);
-  EXPECT_GE(breaking.broke_in, 3);
-  EXPECT_LE(breaking.broke_in, 5);
+  // A threshold half as much again as the first cycle's peak, which the peaks of later cycles (the work
+  // dissipated before them plus about one peak) reach: τ = 2 Gc A_c / N_c = target V², A_c = Δx h, N_c = 36,
+  // V = Δx² h.
+  const double h = spacing, V = spacing * spacing * h;
+  const double target = 1.5 * relaxing.peak_first;
+  const double Gc = target * V * V * 36 / (2 * spacing * h);
+  const Cycles breaking = shear_cycles(0.6, Gc, 10);
+  EXPECT_GE(breaking.broke_in, 2);
+  EXPECT_LE(breaking.broke_in, 7);
+  std::printf("work after each cycle / first peak:");
+  for (double w : relaxing.work_after) std::printf(" %.4f", w / relaxing.peak_first);
+  std::printf("; breaks in cycle %d\n", breaking.broke_in);
 }
 
 TEST(EnergyFailure, SameBitsForOneAndTwoThreads) {
