@@ -410,7 +410,8 @@ std::size_t Simulation::memory_bytes() const {
                         (history_arrays_ > 0 ? 4 /*return-map scratch*/ : 0)) +
       4 + 4;
   const std::size_t per_bond = sizeof(std::uint32_t) + sizeof(std::uint8_t) + history_arrays_ * sizeof(double) +
-                               (bonds_.reverse.empty() ? 0 : sizeof(std::uint32_t));
+                               (bonds_.reverse.empty() ? 0 : sizeof(std::uint32_t)) +
+                               (energy_failure_ ? 3 * sizeof(double) : 0);  // W, T, e (energy criterion)
   return n * per_point + (n + 1) * sizeof(std::uint64_t) + nnz * per_bond;
 }
 
