@@ -3,6 +3,7 @@
 // threads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -158,6 +159,28 @@ TEST(Cli, OneAndTwoThreadsGiveIdenticalBits) { expect_identical_with_one_and_two
 // breaking across their interface, with 1 and 2 threads.
 TEST(Cli, InelasticOneAndTwoThreadsGiveIdenticalBits) {
   expect_identical_with_one_and_two_threads("inelastic_small.yaml", "inelastic_threads");
+}
+
+// Bonds breaking by their work (damage criterion: energy): 1 and 2 threads give identical bits; the crack
+// grew, and the run log gives the block's N_c (36 for δ = 3.015Δx in 2D).
+TEST(Cli, EnergyFailureOneAndTwoThreadsGiveIdenticalBits) {
+  const fs::path one = expect_identical_with_one_and_two_threads("energy_failure_small.yaml", "energy_threads");
+  std::istringstream rows(read_file(one / "history.csv"));
+  std::string header, row, last;
+  std::getline(rows, header);
+  while (std::getline(rows, row)) last = row;
+  auto cells = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::istringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+    return out;
+  };
+  const std::vector<std::string> names = cells(header), values = cells(last);
+  const auto column = std::find(names.begin(), names.end(), "max_damage") - names.begin();
+  ASSERT_LT(static_cast<std::size_t>(column), values.size()) << header << "\n" << last;
+  EXPECT_GT(std::stod(values[static_cast<std::size_t>(column)]), 0.3) << "the crack grew: " << last;
+  const Result check = run("check " + (source / "tests" / "regression" / "decks" / "energy_failure_small.yaml").string());
+  EXPECT_NE(check.output.find("N_c 36 micropotentials per cell"), std::string::npos) << check.output;
 }
 
 // Dynamic relaxation in load steps with bonds breaking between equilibria: 1 and 2 threads give identical

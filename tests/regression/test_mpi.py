@@ -26,7 +26,8 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/thermoviscoelastic_small.yaml",
      "thermoviscoelastic with WLF and thermal strain in a temperature gradient, relaxation with stepped loads"),
     ("tests/regression/decks/surface_correction_small.yaml",
-     "surface correction of pmb beside lps (factors iterated over ghosts), jitter, bond failure"),
+     "surface correction of pmb beside lps (factors from ghosts' energies), jitter, bond failure"),
+    ("tests/regression/decks/energy_failure_small.yaml", "lps 2D, bonds breaking by their work (damage criterion: energy)"),
 ]
 RANKS = [1, 2, 3, 4]
 

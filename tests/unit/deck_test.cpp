@@ -336,6 +336,24 @@ TEST(Deck, ResolvedYamlRoundTrips) {
   }
 }
 
+// damage.criterion: energy (damage/energy_failure.hpp) keeps fracture_energy as Gc and survives the resolved deck;
+// stretch, the default, is not written.
+TEST(Deck, EnergyCriterionParsesAndRoundTrips) {
+  const std::string deck = replaced(deck_2d, "critical_stretch: 1e-3", "fracture_energy: 3.8\n      criterion: energy");
+  const Problem first = parse(deck);
+  ASSERT_TRUE(first.materials[0].damage.enabled);
+  EXPECT_EQ(first.materials[0].damage.criterion, DamageCriterion::energy);
+  EXPECT_EQ(*first.materials[0].damage.fracture_energy, 3.8);
+  EXPECT_FALSE(first.materials[0].damage.critical_stretch);
+  const std::string resolved = resolved_deck_yaml(first);
+  EXPECT_NE(resolved.find("criterion: energy"), std::string::npos);
+  EXPECT_EQ(parse(resolved).materials[0].damage.criterion, DamageCriterion::energy);
+  EXPECT_EQ(parse(deck_2d).materials[0].damage.criterion, DamageCriterion::stretch);
+  EXPECT_EQ(resolved_deck_yaml(parse(deck_2d)).find("criterion"), std::string::npos);
+  const std::string both = replaced(deck_2d, "critical_stretch: 1e-3", "critical_stretch: 1e-3\n      criterion: energy");
+  expect_error(both, position_of(both, "energy\n"), "criterion: energy needs fracture_energy (Gc), not critical_stretch");
+}
+
 TEST(Deck, PointsFileBodyNeedsNoSpacing) {
   std::ofstream(fs::path(test_dir()) / "points.txt") << "0 0 1e-6 1\n";
   std::string deck = replaced(deck_2d, "shape: {box: {min: [0, 0], max: [0.05, 0.05]}}", "points_file: points.txt\n    block: 1");

@@ -214,7 +214,14 @@ struct Parser {
 
   DamageSpec parse_damage(const Value& v, const std::string& path) {
     MapReader r(ctx, v.node, v.key_pos, path, damage_keys());
-    return {true, r.optional_number("critical_stretch"), r.optional_number("fracture_energy")};
+    DamageSpec d{true, r.optional_number("critical_stretch"), r.optional_number("fracture_energy")};
+    if (r.given("criterion") && r["criterion"].text == "energy") {
+      d.criterion = DamageCriterion::energy;
+      if (r.present("critical_stretch"))  // the work criterion has no stretch threshold
+        ctx.error(r["criterion"].pos, r.path_of("criterion"),
+                  "energy needs fracture_energy (Gc), not critical_stretch; give fracture_energy instead");
+    }
+    return d;
   }
 
   /// All four of K, G, E, ν from the ones given: the first two known (for a bond-based model the

@@ -32,10 +32,15 @@ struct ElasticConstants {
   double poisson_ratio = 0;   ///< ν (-)
 };
 
+/// What breaks a bond: its stretch (critical_stretch, or the s0 of fracture_energy), or the work done on it
+/// (fracture_energy with criterion: energy; damage/energy_failure.hpp).
+enum class DamageCriterion { stretch, energy };
+
 struct DamageSpec {
   bool enabled = false;
   std::optional<double> critical_stretch;  ///< s0 (-), given directly
   std::optional<double> fracture_energy;   ///< G0 (J/m²); s0 then follows from K, δ (3D/2D formulas)
+  DamageCriterion criterion = DamageCriterion::stretch;  ///< energy: needs fracture_energy (Gc)
 };
 
 /// A material model's or a solver's own deck keys (its KeySpecs: deck/model_schema.hpp, solver_schema.hpp),

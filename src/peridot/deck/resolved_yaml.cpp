@@ -154,6 +154,8 @@ void emit_materials(YAML::Emitter& out, const Problem& p) {
       out << YAML::Key << "damage" << YAML::Value << YAML::BeginMap;
       if (m.damage.critical_stretch) out << YAML::Key << "critical_stretch" << YAML::Value << number(*m.damage.critical_stretch);
       if (m.damage.fracture_energy) out << YAML::Key << "fracture_energy" << YAML::Value << number(*m.damage.fracture_energy);
+      // stretch, the default, is left out: the resolved decks of stretch runs stay as they were.
+      if (m.damage.criterion == DamageCriterion::energy) out << YAML::Key << "criterion" << YAML::Value << "energy";
       out << YAML::EndMap;
     }
     out << YAML::EndMap;

@@ -71,7 +71,7 @@ function (1, δ/ξ or exp(−ξ²/δ²)), V the neighbour volume; sums run over 
 One form covers both: t = (ω/m)[α_v θ ξ + α_d (e − θξ/n)] with (n, α_v, α_d) = (3, 3K, 15G) in 3D and
 (2, 2K′, 8G) in 2D, and W = α_v θ²/(2n) + (α_d/2m) Σ ω (e − θξ/n)² V; t = ∂W/∂e exactly.
 
-With surface_correction (docs/algorithms.md §14), each bond's ω is multiplied by its factor G (ω̃ = G ω) in θ, the
+With surface_correction (docs/algorithms.md §15), each bond's ω is multiplied by its factor G (ω̃ = G ω) in θ, the
 force and W, while m stays the reference Σ ω ξ² V:
 
 - (8) t = (ω̃/m)[α_v θ ξ + α_d (e − κ θξ/n)], κ = 2 − m̃/m, m̃ = Σ ω̃ ξ² V, which is ∂W/∂e of the same W with ω̃.)",
@@ -85,7 +85,7 @@ force and W, while m stays the reference Σ ω ξ² V:
 - Points within δ of a free surface have one-sided families and respond stiffer to stretching along the surface
   (2D plane stress, δ = 3.015Δx: the outer row stores 1.35 times the classical energy of a uniaxial stress, and
   a bar 16 points wide carries waves 5.3 % faster than √(E/ρ)). `surface_correction: true` scales each bond by
-  the energy method (docs/algorithms.md §14): the bar's wave speed is then within 1.3 %. The correction keeps
+  the energy method (docs/algorithms.md §15): the bar's wave speed is then within 1.3 %. The correction keeps
   t = ∂W/∂e (force (8) below) and is computed once at set-up.
 - On a lattice the deviatoric sum is a quadrature: at δ = 3.015Δx the interior energy of a general strain
   is off by 1–2.5 %; δ = 4.015Δx with partial_volume: extended brings it within 1 %.

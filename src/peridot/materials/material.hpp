@@ -29,6 +29,9 @@ struct MaterialParams {
   bool surface_correction = false;
   /// Bond fails when its stretch exceeds this; +∞ without damage.
   double critical_stretch = std::numeric_limits<double>::infinity();
+  /// Gc (J/m²) of the energy criterion (damage criterion: energy, damage/energy_failure.hpp), 0 without it;
+  /// such a block has no critical stretch.
+  double fracture_energy = 0;
   /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
   /// the Silling–Askari stable time step estimate and the relaxation's fictitious density; a model may
   /// raise it in its resolve (correspondence: the P-wave modulus and the hourglass springs).

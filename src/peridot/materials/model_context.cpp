@@ -23,7 +23,9 @@ bool ModelContext::any_start_step() const {
 }
 
 bool ModelContext::any_damage() const {
-  return std::any_of(params.begin(), params.end(), [](const MaterialParams& p) { return std::isfinite(p.critical_stretch); });
+  return std::any_of(params.begin(), params.end(), [](const MaterialParams& p) {
+    return std::isfinite(p.critical_stretch) || p.fracture_energy > 0;
+  });
 }
 
 namespace {

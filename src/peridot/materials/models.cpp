@@ -44,7 +44,12 @@ ResolvedMaterial resolve_material(const MaterialSpec& spec, double horizon, cons
   p.elastic = spec.elastic;
   p.thermal_expansion = spec.parameters.number_or("thermal_expansion", 0.0);
   p.stable_micromodulus = bond_based_micromodulus(spec.elastic, horizon, InfluenceKind::constant, problem);
-  if (spec.damage.enabled) {
+  if (spec.damage.enabled && spec.damage.criterion == DamageCriterion::energy) {
+    p.fracture_energy = spec.damage.fracture_energy.value_or(0.0);  // the deck requires it
+    if (!(problem.spacing > 0))  // N_c and the crack area A_c of one cell are the lattice's
+      throw InputError(spec.pos, "materials." + spec.name +
+                                     ": damage criterion energy needs the lattice spacing (discretization.spacing)");
+  } else if (spec.damage.enabled) {
     if (spec.damage.critical_stretch) p.critical_stretch = *spec.damage.critical_stretch;
     else if (spec.damage.fracture_energy)
       p.critical_stretch = critical_stretch_from_energy(*spec.damage.fracture_energy, spec, horizon, problem);

@@ -35,7 +35,7 @@ The integrals ∫₀^δ ω ξ^p dξ are evaluated in closed form for each influe
 - The calibration assumes a full neighbourhood: points near a free surface have fewer bonds and respond
   more softly (a 3D block of 9³ points stores 32 % less than the classical energy of a uniaxial strain).
   `surface_correction: true` scales each pair's micromodulus by the energy method's factor G (docs/algorithms.md
-  §14; c0 ω G): the block's energy is then within 0.7 %.
+  §15; c0 ω G): the block's energy is then within 0.7 %.
 - 2D decks use the forms (5) for the thickness h and the plane (stress or strain) of the discretization.)",
     .further_references = {},
     .example = R"(materials:

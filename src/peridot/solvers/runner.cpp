@@ -65,6 +65,9 @@ std::string describe_setup(const Simulation& sim) {
     out << fmt::format("  block {:<10} {} points, model {}, horizon {:.6g} m, critical stretch {}\n", disc.block_names[b],
                        r.end - r.begin, model_name(p.model), p.horizon,
                        std::isfinite(p.critical_stretch) ? fmt::format("{:.6g}", p.critical_stretch) : "none");
+    if (const EnergyFailure* energy = sim.energy_failure(); energy && p.fracture_energy > 0)
+      out << fmt::format("  {:<16} energy criterion: Gc {:.6g} J/m^2, N_c {:g} micropotentials per cell, bond work "
+                         "W V_i V_j >= {:.6g} J\n", "", p.fracture_energy, energy->micropotentials(b), energy->threshold(b));
   }
   out << fmt::format("bonds            {} directed ({:.1f} per point)\n", static_cast<std::uint64_t>(bonds),
                      disc.num_points() ? bonds / static_cast<double>(disc.num_points()) : 0.0);

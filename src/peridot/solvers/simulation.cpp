@@ -100,6 +100,8 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   any_dilatation_ = model_.any_dilatation();
   any_start_step_ = model_.any_start_step();
   any_damage_ = model_.any_damage();
+  if (std::any_of(model_.params.begin(), model_.params.end(), [](const MaterialParams& p) { return p.fracture_energy > 0; }))
+    energy_failure_ = std::make_unique<EnergyFailure>(model_, problem_.spacing, problem_.thickness);
   history_arrays_ = model_.bond_history_arrays();
   partner_arrays_ = model_.partner_point_arrays();
   released_arrays_ = model_.released_extension_arrays();
@@ -162,6 +164,7 @@ void Simulation::evaluate(double dt, bool break_bonds) {
   // before any force uses the bond).
   const bool fail = break_bonds && any_damage_;
   const bool fail_in_force_pass = !any_dilatation_ || model_.bond_failure_after_force;
+  if (fail && energy_failure_) energy_failure_->break_bonds(model_, state_.u, nullptr);  // the committed work
   if (!fail)  // no bond breaks now: θ lost nothing to one
     for (int k : released_arrays_) std::fill(state_.history.point[k].begin(), state_.history.point[k].end(), 0.0);
   if (any_dilatation_) {
@@ -192,6 +195,8 @@ void Simulation::evaluate(double dt, bool break_bonds) {
 }
 
 void Simulation::commit(double dt) {
+  if (energy_failure_)  // the step's work, with the forces of the last evaluation (before the models commit)
+    energy_failure_->accumulate(model_, state_.u, kernel_fields(model_, state_.dilatation, &state_.history));
   if (has_history_) {
     model_.set_time_step(dt);
     commit_history(model_, state_.u, state_.dilatation, state_.history, dt);
@@ -209,6 +214,10 @@ std::uint64_t Simulation::break_bonds() {
     return static_cast<std::uint64_t>(std::count(bonds_.broken.begin(), bonds_.broken.end(), std::uint8_t{1}));
   };
   const std::uint64_t before = count();
+  if (energy_failure_) {  // at the last evaluation's u: the committed work and the step's so far
+    const KernelFields fields = kernel_fields(model_, state_.dilatation, &state_.history);
+    energy_failure_->break_bonds(model_, state_.u, &fields);
+  }
   if (any_dilatation_ && !model_.bond_failure_after_force) {
     std::vector<double> theta;
     compute_dilatation(model_, state_.u, theta, true, &state_.history);  // e − e^dp for lps_plastic
@@ -405,7 +414,8 @@ std::size_t Simulation::memory_bytes() const {
       4 + 4;
   const std::size_t per_bond = sizeof(std::uint32_t) + sizeof(std::uint8_t) + history_arrays_ * sizeof(double) +
                                (bonds_.reverse.empty() ? 0 : sizeof(std::uint32_t)) +
-                               (model_.bond_scale.empty() ? 0 : sizeof(double));
+                               (model_.bond_scale.empty() ? 0 : sizeof(double)) +
+                               (energy_failure_ ? 3 * sizeof(double) : 0);  // W, T, e (energy criterion)
   return n * per_point + (n + 1) * sizeof(std::uint64_t) + nnz * per_bond;
 }
 

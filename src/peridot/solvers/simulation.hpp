@@ -34,6 +34,7 @@
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/parallel/halo.hpp"
 #include "peridot/damage/critical_stretch.hpp"
+#include "peridot/damage/energy_failure.hpp"
 #include "peridot/solvers/correspondence_blocks.hpp"
 #include "peridot/solvers/internal_force.hpp"
 #include "peridot/solvers/surface_correction.hpp"
@@ -136,6 +137,9 @@ class Simulation {
   double density_of(std::size_t point) const { return model_.params[disc_.block[point]].density; }
   /// Whether some material may break bonds.
   bool any_damage() const { return any_damage_; }
+  /// The work done on each bond and the energy criterion (damage criterion: energy); null when no block
+  /// uses it.
+  const EnergyFailure* energy_failure() const { return energy_failure_.get(); }
 
   /// The rigid walls of the deck (contact/rigid_wall.hpp); empty() when none.
   const RigidWalls& walls() const { return *walls_; }
@@ -205,6 +209,7 @@ class Simulation {
   std::unique_ptr<Loads> loads_;
   std::unique_ptr<CorrespondenceBlocks> correspondence_;
   std::unique_ptr<RigidWalls> walls_;
+  std::unique_ptr<EnergyFailure> energy_failure_;  ///< null unless a block breaks bonds by their work
   std::unique_ptr<TemperatureField> temperature_;  ///< the deck's temperature field; null without one
   double temperature_time_ = std::numeric_limits<double>::quiet_NaN();  ///< the time model_.temperature is at
   VectorField wall_force_;  ///< penalty force density of the walls (N/m³), at the time of the last force

@@ -1,5 +1,5 @@
 #pragma once
-// Surface correction by the energy method (after Madenci & Oterkus 2016; docs/algorithms.md §14): a point
+// Surface correction by the energy method (after Madenci & Oterkus 2016; docs/algorithms.md §15): a point
 // whose family is cut by a free surface stores another energy than the classical one under a homogeneous
 // strain. Per point i and axis d, g_d(i) = W_classical / W_d(i), W_d the point's energy under a uniaxial strain ε
 // along d and W_classical = ½ M ε² (M = K + 4G/3 in 3D, K′ + G in 2D); a bond takes the ellipsoid
