@@ -511,6 +511,21 @@ struct Parser {
     });
   }
 
+  void parse_tractions(const Value& v) {
+    for_each_item(v, "tractions", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("tractions[i]").keys);
+      TractionSpec t;
+      t.pos = pos;
+      t.node_set = node_set_of(r);
+      t.depth = r.optional_number("depth").value_or(p.spacing);
+      if (!(t.depth > 0))
+        ctx.error(pos, path + ".depth", "give the layer's depth (there is no lattice spacing to default to)");
+      auto components = components_of(r);
+      std::copy(components.begin(), components.end(), t.component);
+      p.tractions.push_back(std::move(t));
+    });
+  }
+
   void parse_temperature(const Value& v) {
     MapReader r(ctx, v.node, v.key_pos, "temperature", deck_section("temperature").keys);
     TemperatureSpec t;
@@ -604,6 +619,7 @@ struct Parser {
     parse_initial_conditions(r["initial_conditions"]);
     parse_boundary_conditions(r["boundary_conditions"]);
     parse_body_forces(r["body_forces"]);
+    parse_tractions(r["tractions"]);
     parse_rigid_walls(r["rigid_walls"]);
     if (r.given("temperature")) parse_temperature(r["temperature"]);
     if (r.given("solver")) parse_solver(r["solver"]);

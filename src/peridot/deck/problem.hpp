@@ -147,6 +147,16 @@ struct BodyForceSpec {
   std::optional<Expression> component[3];  ///< force density (N/m³) of x, y, z, t
 };
 
+/// A traction (force per area) carried by a layer of points of depth d next to a surface, as Madenci & Oterkus
+/// apply it: each point of the node set gets the body force t/d. The layer may be fictitious, an extension of the
+/// body beyond the loaded surface (docs/algorithms.md §16).
+struct TractionSpec {
+  SourcePos pos;
+  std::string node_set;
+  double depth = 0;                        ///< d (m): the layer's depth normal to the surface
+  std::optional<Expression> component[3];  ///< traction (Pa) of x, y, z, t
+};
+
 /// How a rigid wall loads the bodies (contact/rigid_wall.hpp): penalty on the points behind it, or, for
 /// correspondence bodies that touch it, also as a symmetry plane (correspondence/mirror_bonds.hpp).
 enum class WallContactKind { penalty, symmetry };
@@ -218,6 +228,7 @@ struct Problem {
   std::vector<InitialConditionSpec> initial_conditions;
   std::vector<BoundaryConditionSpec> boundary_conditions;
   std::vector<BodyForceSpec> body_forces;
+  std::vector<TractionSpec> tractions;
   std::vector<RigidWallSpec> rigid_walls;
   std::optional<TemperatureSpec> temperature;  ///< none: no thermal strain, no WLF shift
   SolverSpec solver;

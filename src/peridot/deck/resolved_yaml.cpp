@@ -256,6 +256,11 @@ void emit_loads(YAML::Emitter& out, const Problem& p) {
     if (!f.node_set.empty()) out << YAML::Key << "node_set" << YAML::Value << f.node_set;
     emit_components(out, f.component);
   });
+  emit_list(out, "tractions", p.tractions, [&](const TractionSpec& t) {
+    out << YAML::Key << "node_set" << YAML::Value << t.node_set;
+    out << YAML::Key << "depth" << YAML::Value << number(t.depth);
+    emit_components(out, t.component);
+  });
   emit_list(out, "rigid_walls", p.rigid_walls, [&](const RigidWallSpec& w) {
     out << YAML::Key << "name" << YAML::Value << w.name;
     out << YAML::Key << "point" << YAML::Value;

@@ -193,6 +193,7 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "initial_conditions", .type = VT::sequence, .description = "initial displacement or velocity"},
                 {.key = "boundary_conditions", .type = VT::sequence, .description = "prescribed displacement or velocity"},
                 {.key = "body_forces", .type = VT::sequence, .description = "force per volume"},
+                {.key = "tractions", .type = VT::sequence, .description = "force per area, carried by a layer of points"},
                 {.key = "rigid_walls", .type = VT::sequence, .description = "rigid frictionless planes the points cannot cross"},
                 {.key = "temperature", .type = VT::mapping, .description = "a prescribed temperature field: thermal strain, WLF shift"},
                 {.key = "solver", .type = VT::mapping, .description = "explicit dynamics or quasi-static relaxation", .required = true},
@@ -290,6 +291,17 @@ std::vector<SectionSpec> make_sections() {
   s.push_back({"boundary_conditions[i].velocity", "prescribed velocity (m/s)", component_keys(Unit::velocity, VT::expression)});
   s.push_back({"body_forces[i]", "force per volume (N/m^3), functions of x, y, z, t",
                with_node_set(component_keys(Unit::force_density, VT::expression), false)});
+  {
+    std::vector<KeySpec> keys = with_node_set(component_keys(Unit::pressure, VT::expression), true);
+    keys.insert(keys.begin() + 1, {.key = "depth", .unit = Unit::length, .range = positive,
+                                   .description = "depth d of the layer normal to the surface; default the lattice spacing "
+                                                  "(one row of points)"});
+    s.push_back({"tractions[i]",
+                 "a traction t (Pa, functions of x, y, z, t) carried by the node set, a layer of points of depth d next to "
+                 "the loaded surface: each of its points gets the body force t/d (Madenci & Oterkus's boundary layer; the "
+                 "layer may be a fictitious extension of the body beyond the surface)",
+                 std::move(keys)});
+  }
   s.push_back({"rigid_walls[i]",
                "a rigid, frictionless plane (an anvil): penalty force density κ·(penetration) along the normal on every "
                "point behind it, κ = stiffness_factor × the Silling–Askari stiffness Σ V c/ξ of a full family of the point's "

@@ -30,6 +30,13 @@ Loads::Loads(const Problem& problem, const Discretization& disc, const std::vect
         body_forces_.push_back({&points_of(sets, bf.node_set, all_points_), d, ScalarFunction(*bf.component[d])});
         body_force_time_dependent_ = body_force_time_dependent_ || body_forces_.back().value.depends_on_time();
       }
+  for (const TractionSpec& traction : problem.tractions)
+    for (int d = 0; d < 3; ++d)
+      if (traction.component[d]) {
+        body_forces_.push_back(
+            {&points_of(sets, traction.node_set, all_points_), d, ScalarFunction(*traction.component[d]), 1 / traction.depth});
+        body_force_time_dependent_ = body_force_time_dependent_ || body_forces_.back().value.depends_on_time();
+      }
 }
 
 void Loads::apply_initial_conditions(State& state) const {
@@ -83,7 +90,7 @@ void Loads::evaluate_body_force(double t, VectorField& b) const {
   std::fill(b.data(), b.data() + 3 * b.size(), 0.0);
   for (const Field& field : body_forces_)
     for (std::uint32_t i : *field.points)
-      b(i, field.component) += field.value(disc_.x(i, 0), disc_.x(i, 1), disc_.x(i, 2), t);
+      b(i, field.component) += field.scale * field.value(disc_.x(i, 0), disc_.x(i, 1), disc_.x(i, 2), t);
 }
 
 }  // namespace peridot

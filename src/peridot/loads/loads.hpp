@@ -50,6 +50,7 @@ class Loads {
     const std::vector<std::uint32_t>* points;
     int component;
     ScalarFunction value;
+    double scale = 1;  ///< a traction's 1/d
   };
   const Discretization& disc_;
   std::vector<std::uint32_t> all_points_;

@@ -21,18 +21,24 @@
 // and (M3) mapped through s^μ is its eq 23 (eq 24b): the same model, with a history that is local per bond.
 // WLF (eq 16, as thermorheologically simple materials shift): τ_k(T) = a_T τ_k, log₁₀ a_T = −c1 (T − T0)/(c2 + T − T0).
 // Per step (start_step) the branches' part of (M2) is gathered into per-point P, Q, R and per-bond A:
-//   (M4) t = (2δ/|ξ|) [P e + Q θ + R − A],  P = g (b0 − B), Q = d (a_κ − r g b0) + r d g B, R = r d g A_i,
+//   (M4) t = (2δ/|ξ|) [w P e + Q θ + R − w A],  P = g (b0 − B), Q = d (a_κ − r g b0) + r d g B, R = r d g A_i,
 //        B = Σ b_k β_k, A = g Σ b_k (ε_k e^v_k,n + (1 − ε_k − β_k) e_n), A_i = Σ b_k (ε_k θ^v_k,n + (1 − ε_k − β_k) θ_n),
 // so that an evaluation costs what an lps one does, whatever the number of terms.
-// (M5) stored energy W = (a_κ − a_μ∞) θ² + b∞ δ Σ e²/|ξ| V + Σ_k [b_k δ Σ (e − e^v_k)²/|ξ| V − r b_k θ(e − e^v_k)²]
+// (M5) stored energy W = (a_κ − a_μ∞) θ² + b∞ δ Σ w e²/|ξ| V + Σ_k [b_k δ Σ w (e − e^v_k)²/|ξ| V − r b_k θ(e − e^v_k)²]
 //      (every b with the point's g);
 // (M6) dissipation Σ_k (2/τ_k) ∫ W_k dt, W_k the k-th bracket of (M5), integrated exactly over the step for
 //      e linear in time. The distortional form of (M1) is indefinite (a uniform e gives b δ Σ e²/|ξ| V − a_μ θ² < 0):
 //      W_k and the dissipation are non-negative for homogeneous deformations, not for every nonlocal state.
-// History: MaterialHistory::bond[0] = A (the step's, start_step: the one array the force reads), bond[1] = e_n,
-// bond[2 + k] = e^v_k;
+// Lattice anisotropy (surface_correction): on a square or cubic lattice the distortional sum Σ |ξ| s² V is only a
+// quadrature, and it is not isotropic: at δ = 3Δx in 2D the shear ε_xx = −ε_yy stores 7.1 % more than the shear
+// ε_xy (the continuum's are equal). Each point's bonds therefore carry a weight w = 1 + β c(n) in the distortional
+// terms (b and the branches, not θ), c(n) = 1 − 8 n_x² n_y² in 2D (cos 4φ), n_x⁴ + n_y⁴ + n_z⁴ − 3/5 in 3D (the
+// cubic harmonic), β per point such that its own family stores the same energy under both shears
+// (docs/algorithms.md §13); the b-scale g and r then follow from the weighted sums.
+// History: MaterialHistory::bond[0] = w A (the step's, start_step: read by the force), bond[1] = w (start_step,
+// from x and the point's β: read by the force and the energy), bond[2] = e_n, bond[3 + k] = e^v_k;
 // point[0..2] = P, Q, R (the step's), point[3], point[4] = Σ_k r g b_k θ^v_k and Σ_k r g b_k (θ^v_k)² (committed);
-// point constants [0], [1], [2] = d, g, r per point.
+// point constants [0], [1], [2], [3] = d, g, r, β per point.
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -49,16 +55,16 @@ struct Thermoviscoelastic : ModelBase {
   static constexpr bool uses_dilatation = true;
   static constexpr bool has_start_step = true;
   static constexpr int max_terms = 20;
-  /// The most a block may need (max_terms + 2); bond_history_count gives a block's.
-  static constexpr int bond_history_arrays = max_terms + 2;
+  /// The most a block may need (max_terms + 3); bond_history_count gives a block's.
+  static constexpr int bond_history_arrays = max_terms + 3;
   static constexpr std::array<PointArray, 5> point_arrays{{{"branch_stiffness_P", 0},
                                                            {"dilatation_coefficient_Q", 0},
                                                            {"branch_dilatation_R", 0},
                                                            {"branch_dilatation_sum", 0},
                                                            {"branch_dilatation_square_sum", 0}}};
   static constexpr std::array<int, 3> partner_point_arrays{0, 1, 2};
-  /// Per point: d, g (the scale of b) and r = a_μ/b (surface_correction), or the full family's d, 1, r.
-  static constexpr int point_constant_arrays = 3;
+  /// Per point: d, g (the scale of b), r = a_μ/b and β (surface_correction), or the full family's d, 1, r, 0.
+  static constexpr int point_constant_arrays = 4;
 
   struct Params {
     double horizon = 0;            ///< δ
@@ -77,7 +83,7 @@ struct Thermoviscoelastic : ModelBase {
     double wlf_c1 = 0, wlf_c2 = 0, wlf_reference = 0;  ///< c1, c2 (K), T0 (K)
   };
   static Params resolve(const MaterialSpec& spec, const Problem& problem, MaterialParams& block);
-  static int bond_history_count(const Params& p) { return p.terms + 2; }
+  static int bond_history_count(const Params& p) { return p.terms + 3; }
 
   static double dilatation_extension(const KernelFields&, std::uint64_t, double e, double xi) { return e / xi; }
   /// (M1): the generic sum is Σ (δ/|ξ|) |ξ| (e/|ξ|) V = δ Σ s V.
@@ -87,17 +93,17 @@ struct Thermoviscoelastic : ModelBase {
   /// (M4). ω (δ/|ξ| of the block) is not read: the model has its own.
   static double force_scalar(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t b, double e,
                              double xi, double /*omega*/) {
-    return 2 * p.horizon / xi * (s.point[0][i] * e + s.point[1][i] * s.theta[i] + s.point[2][i] - s.bond[0][b]);
+    return 2 * p.horizon / xi * (s.bond[1][b] * s.point[0][i] * e + s.point[1][i] * s.theta[i] + s.point[2][i] - s.bond[0][b]);
   }
   /// (M5), the bond part, with the committed e^v.
   static double bond_energy(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t b, double e,
                             double xi, double /*omega*/) {
     double w = p.bond_relaxed * e * e;
     for (int k = 0; k < p.terms; ++k) {
-      const double x = e - s.history->bond[2 + k][b];
+      const double x = e - s.history->bond[3 + k][b];
       w += p.bond_modulus[k] * x * x;
     }
-    return s.point_constant[1][i] * p.horizon * w / xi;
+    return s.bond[1][b] * s.point_constant[1][i] * p.horizon * w / xi;
   }
   /// (M5), the point part: (a_κ − a_μ0) θ² + 2θ Σ r b_k θ^v_k − Σ r b_k (θ^v_k)², a_μ0 = r b0 of the point.
   static double point_energy(const Params& p, const KernelFields& s, std::size_t i) {

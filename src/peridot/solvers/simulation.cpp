@@ -122,6 +122,11 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   surface_correction_ = correct_surfaces(model_, problem_, state_.history, owned_,
                                          [&](std::vector<double>& field) { halo_.exchange(field); }, comm_);
   for (std::vector<double>& constants : model_.point_constants) halo_.exchange(constants);  // a partner's kernel reads them
+  if (any_start_step_) {  // what a force or an energy reads of a step before the first one (thermoviscoelastic's w)
+    update_temperature();
+    peridot::start_step(model_, state_.history, 0.0);
+    exchange_partner_bonds();
+  }
   loads_ = std::make_unique<Loads>(problem_, disc_, node_sets_);
 
   work_.assign(disc_.num_points(), 0.0);
