@@ -125,11 +125,15 @@ struct Parser {
     double delta = h.horizon ? *h.horizon : *h.factor * *spacing;
     if (!spacing) return delta;
     double ratio = delta / *spacing;
-    if (ratio <= 1) {
+    if (ratio < 1 - 1e-9) {
       ctx.error(h.pos, path,
                 fmt::format("horizon δ = {:g} m is not larger than the spacing Δx = {:g} m (δ/Δx = {:g}); "
                             "a point needs neighbours beyond the adjacent ones, typically δ ≈ 3Δx",
                             delta, *spacing, ratio));
+    } else if (ratio < 1 + 1e-9) {  // the m = 1 of convergence studies (Madenci & Oterkus)
+      ctx.warning(h.pos, path,
+                  "horizon δ = Δx: each point is bonded to its nearest lattice neighbours only (m = 1), a coarse "
+                  "quadrature of the model's sums; typically δ ≈ 3Δx");
     } else if (ratio > 6) {
       ctx.warning(h.pos, path,
                   fmt::format("horizon δ/Δx = {:g} is unusually large (> 6): many bonds per point, a slow run", ratio));
