@@ -7,13 +7,14 @@ stress κ = 9Kμ0/(3K + 4μ0)), shear modulus the Prony series μ(t). Under unia
 Laplace domain, its poles found by bisection). For σ0 on [0, t1): ε(t) = σ0 [D(t) − H(t − t1) D(t − t1)], D = 1/(4κ) +
 J/4. The plate is free to contract laterally, so away from its ends u_x = ε_xx (x − x₀), x₀ the rollers' row.
 
-    creep.py --peridot PATH [--out DIR] [--threads N] [--spacing MM] [--horizon MM] [--check TOL]
+    creep.py --peridot PATH [--out DIR] [--threads N] [--spacing MM] [--horizon MM] [--check TOL] [--case shear]
     creep.py --peridot PATH --convergence [--out DIR]
 
 The first form runs deck.yaml (Δx = 5 mm, δ = 15 mm, or the given ones: the deck's lengths are replaced), writes
 DIR/creep.png (u_x at (L, W/2) against time, Peridot and the closed form) and prints the table; --check TOL exits 1
 unless every output time is within TOL (a fraction) of the closed form, relative to the largest displacement. The
-second runs the convergence study of the paper's Figs 6–7 (m = δ/Δx = 1, 2, 3 at δ = 15 mm; Δx = 5, 2.5 mm at
+--case shear runs the simple-shear case (b) instead: τ = σ0 on the four edges, γ_xy of the mid row and column
+against τ J(t) (no PNG). The second form runs the convergence study of the paper's Figs 6–7 (m = δ/Δx = 1, 2, 3 at δ = 15 mm; Δx = 5, 2.5 mm at
 m = 3) and writes DIR/convergence.png and the table (about 20 minutes on 2 cores)."""
 import argparse
 import csv
@@ -31,8 +32,9 @@ TAUS = [1e-4, 1e-3, 1e-2, 1, 10, 100, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e11, 3
 E_INF, NU = 700.0, 0.3
 
 
-def compliance():
-    """D(t) = 1/(4κ) + J(t)/4 (1/Pa) of the deck's solid."""
+def compliance(case="tension"):
+    """The deck's solid: D(t) = 1/(4κ) + J(t)/4 (1/Pa), the uniaxial-stress creep compliance (tension), or J(t), the
+    shear creep compliance (γ_xy = τ J for a held shear stress τ: shear)."""
     mu_inf = E_INF * 1e6 / (2 * (1 + NU))
     mu = np.array(E_TERMS) * 1e6 / (2 * (1 + NU))
     lam = 1 / np.array(TAUS)
@@ -58,7 +60,7 @@ def compliance():
 
     def D(t):
         J = 1 / mu_inf + sum(a * np.exp(r * t) for a, r in zip(amplitude, roots))
-        return 1 / (4 * kappa) + J / 4
+        return J if case == "shear" else 1 / (4 * kappa) + J / 4
 
     return D
 
@@ -85,19 +87,59 @@ def deck_text(spacing, horizon):
     return text
 
 
-def run(peridot, out, threads, spacing, horizon):
-    """Runs the plate; returns the output times, u_x at (L, W/2) and the closed form there."""
+def shear_deck_text(spacing, horizon):
+    """The simple-shear case (b): the shear traction τ = σ0 on all four edges (right +y, left −y, top +x, bottom −x,
+    each carried by its outer row), released at 5 ms; one point near the centre held, a second one of its row held
+    in y (the loads have no moment: this only fixes the rigid motion). Probes on the mid row and the mid column."""
+    text = deck_text(spacing, horizon)
+    half = spacing / 2
+    start, end = text.index("node_sets:"), text.index("solver:")
+    loads = f"""node_sets:
+  left: {{shape: {{box: {{min: [-1, -1], max: [{spacing!r}, 1]}}}}}}
+  right: {{shape: {{box: {{min: [{L - spacing!r}, -1], max: [1, 1]}}}}}}
+  bottom: {{shape: {{box: {{min: [-1, -1], max: [1, {spacing!r}]}}}}}}
+  top: {{shape: {{box: {{min: [-1, {W - spacing!r}], max: [1, 1]}}}}}}
+  centre: {{shape: {{box: {{min: [{L / 2 - spacing!r}, {W / 2 - spacing!r}], max: [{L / 2 - 1e-9!r}, {W / 2 - 1e-9!r}]}}}}}}
+  aside: {{shape: {{box: {{min: [{0.75 * L - spacing!r}, {W / 2 - spacing!r}], max: [{0.75 * L - 1e-9!r}, {W / 2 - 1e-9!r}]}}}}}}
+boundary_conditions:
+  - {{node_set: centre, displacement: {{x: "0", y: "0"}}}}
+  - {{node_set: aside, displacement: {{y: "0"}}}}
+tractions:
+  - {{node_set: right, y: "2000 * (t < 0.00495)"}}
+  - {{node_set: left, y: "-2000 * (t < 0.00495)"}}
+  - {{node_set: top, x: "2000 * (t < 0.00495)"}}
+  - {{node_set: bottom, x: "-2000 * (t < 0.00495)"}}
+"""
+    text = text[:start] + loads + text[end:]
+    probes = f"""    probes:
+      - {{name: uy_right, point: [{L - half!r}, {W / 2 - half!r}], field: displacement_y}}
+      - {{name: uy_left, point: [{half!r}, {W / 2 - half!r}], field: displacement_y}}
+      - {{name: ux_top, point: [{L / 2 - half!r}, {W - half!r}], field: displacement_x}}
+      - {{name: ux_bottom, point: [{L / 2 - half!r}, {half!r}], field: displacement_x}}
+"""
+    return text[:text.index("    probes:")] + probes
+
+
+def run(peridot, out, threads, spacing, horizon, case="tension"):
+    """Runs the plate; returns the output times, the measured quantity and its closed form: u_x at (L, W/2)
+    (tension), or the engineering shear strain γ_xy of the mid row and column, from probe differences (shear)."""
     os.makedirs(out, exist_ok=True)
     deck = os.path.join(out, "deck.yaml")
     with open(deck, "w") as f:
-        f.write(deck_text(spacing, horizon))
+        f.write(shear_deck_text(spacing, horizon) if case == "shear" else deck_text(spacing, horizon))
     subprocess.run([peridot, "run", "-q", "-t", str(threads), "-o", out, deck], check=True)
     with open(os.path.join(out, "history.csv")) as f:
         rows = list(csv.DictReader(f))
     t = np.array([float(r["time"]) for r in rows])
-    u = np.array([float(r["ux_end"]) for r in rows])
-    D = compliance()
-    length = (L - spacing / 2) - spacing / 2  # probe row minus the rollers' row
+    D = compliance(case)
+    if case == "shear":
+        column = lambda name: np.array([float(r[name]) for r in rows])
+        span = L - spacing  # between the probe points, along the row and (W − Δx) along the column
+        u = (column("uy_right") - column("uy_left")) / span + (column("ux_top") - column("ux_bottom")) / (W - spacing)
+        length = 1.0
+    else:
+        u = np.array([float(r["ux_end"]) for r in rows])
+        length = (L - spacing / 2) - spacing / 2  # probe row minus the rollers' row
     exact = np.array([SIGMA * (D(s) - (D(s - RELEASE) if s >= RELEASE - 1e-12 else 0.0)) * length for s in t])
     return t, u, exact
 
@@ -135,6 +177,7 @@ def main():
     p.add_argument("--horizon", type=float, default=15.0, help="δ (mm)")
     p.add_argument("--check", type=float, default=None, help="largest allowed difference (fraction of the largest u)")
     p.add_argument("--convergence", action="store_true")
+    p.add_argument("--case", choices=["tension", "shear"], default="tension")
     a = p.parse_args()
     if a.convergence:
         cases = [(15.0, 15.0), (7.5, 15.0), (5.0, 15.0), (2.5, 7.5)]  # (Δx, δ) mm: m = 1, 2, 3; then Δx/2 at m = 3
@@ -147,16 +190,18 @@ def main():
             curves.append((f"Δx = {dx:g} mm, δ = {delta:g} mm", t, u, (L - 1e-3 * dx)))
         plot(os.path.join(a.out, "convergence.png"), curves, "Convergence in m = δ/Δx and in Δx")
         return
-    t, u, exact = run(a.peridot, a.out, a.threads, 1e-3 * a.spacing, 1e-3 * a.horizon)
+    t, u, exact = run(a.peridot, a.out, a.threads, 1e-3 * a.spacing, 1e-3 * a.horizon, a.case)
     scale = np.abs(exact).max()
     error = (u - exact) / scale
-    print(f"{'t (ms)':>8} {'u_x Peridot (m)':>16} {'closed form (m)':>16} {'error / max':>12}")
+    quantity = "gamma_xy" if a.case == "shear" else "u_x (m)"
+    print(f"{'t (ms)':>8} {quantity + ' Peridot':>18} {'closed form':>16} {'error / max':>12}")
     for s, mine, ref, e in zip(t, u, exact, error):
-        print(f"{1e3 * s:8.2f} {mine:16.6e} {ref:16.6e} {e:12.3e}")
+        print(f"{1e3 * s:8.2f} {mine:18.6e} {ref:16.6e} {e:12.3e}")
     worst = np.abs(error).max()
-    print(f"largest difference: {100 * worst:.2f} % of the largest closed-form displacement")
-    plot(os.path.join(a.out, "creep.png"), [("Peridot thermoviscoelastic", t, u, L - 1e-3 * a.spacing)],
-         "Creep and recovery, σ0 = 2 kPa released at 5 ms")
+    print(f"largest difference: {100 * worst:.2f} % of the largest closed-form value")
+    if a.case == "tension":
+        plot(os.path.join(a.out, "creep.png"), [("Peridot thermoviscoelastic", t, u, L - 1e-3 * a.spacing)],
+             "Creep and recovery, σ0 = 2 kPa released at 5 ms")
     if a.check is not None and worst > a.check:
         print(f"FAIL: more than {100 * a.check:g} % from the closed form")
         sys.exit(1)

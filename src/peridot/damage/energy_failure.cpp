@@ -69,12 +69,12 @@ double bond_force_states(const ModelContext& ctx, const MaterialParams& p, const
   // The surface correction's factor, as the force loop applies it (G_ij = G_ji to the bit).
   const double scale = ctx.bond_scale.empty() ? 1.0 : ctx.bond_scale[b];
   const double omega = influence(p.influence, g.xi, p.horizon) * (p.surface_correction ? scale : 1.0);
-  const double t_ij = Model::force_scalar(mp, s, i, b, mechanical_extension(ctx, i, g), g.xi, omega);
+  const double t_ij = end_force_scalar<Model>(p, mp, s, i, b, mechanical_extension(ctx, i, g), g.xi, omega);
   const double e_j = mechanical_extension(ctx, j, g);
   const auto other = static_cast<std::size_t>(ctx.disc->block[j]);
   double t_ji;
   if (ctx.disc->block[j] == ctx.disc->block[i]) {
-    t_ji = Model::force_scalar(mp, s, j, partner_bond, e_j, g.xi, omega);
+    t_ji = end_force_scalar<Model>(p, mp, s, j, partner_bond, e_j, g.xi, omega);
   } else {
     const MaterialParams& pj = ctx.params[other];
     t_ji = with_model(pj.model, [&](auto model) -> double {
@@ -82,7 +82,7 @@ double bond_force_states(const ModelContext& ctx, const MaterialParams& p, const
       if constexpr (!Other::has_bond_kernel)
         throw std::logic_error("energy failure: model " + std::string(Other::name) + " has no bond kernel");
       else
-        return Other::force_scalar(ctx.model_params_of<Other>(other), s, j, partner_bond, e_j, g.xi,
+        return end_force_scalar<Other>(pj, ctx.model_params_of<Other>(other), s, j, partner_bond, e_j, g.xi,
                                    influence(pj.influence, g.xi, pj.horizon) * (pj.surface_correction ? scale : 1.0));
     });
   }

@@ -10,6 +10,26 @@
 
 namespace peridot::bond_loop {
 
+/// The scalar force state of a bond end: the model's corrected_force_scalar where the block has the surface
+/// correction and the model has one (lps: its κ term), else its force_scalar. Corrected is known at compile time
+/// in the vectorised loops (their Scaled flag).
+template <bool Corrected, class Model, class Params>
+inline double end_force_scalar(const Params& mp, const KernelFields& s, std::size_t i, std::uint64_t b, double e,
+                               double xi, double omega) {
+  if constexpr (Corrected && requires { &Model::corrected_force_scalar; })
+    return Model::corrected_force_scalar(mp, s, i, b, e, xi, omega);
+  else
+    return Model::force_scalar(mp, s, i, b, e, xi, omega);
+}
+
+/// The same, with the block's surface_correction read at run time (the general bond paths).
+template <class Model, class Params>
+inline double end_force_scalar(const MaterialParams& block, const Params& mp, const KernelFields& s, std::size_t i,
+                               std::uint64_t b, double e, double xi, double omega) {
+  return block.surface_correction ? end_force_scalar<true, Model>(mp, s, i, b, e, xi, omega)
+                                  : end_force_scalar<false, Model>(mp, s, i, b, e, xi, omega);
+}
+
 /// Geometry of one bond i → j in the current configuration.
 template <int Dim>
 struct BondGeometry {

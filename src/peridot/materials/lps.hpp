@@ -51,7 +51,16 @@ struct Lps : ModelBase {
   static double force_scalar(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
                              double e, double xi, double omega) {
     const double theta = s.theta[i];
-    const double reduced = p.surface_correction ? s.point_constant[0][i] * theta : theta;  // κθ
+    return omega * s.inverse_m[i] *
+           (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - theta * xi * p.inverse_dilatation_factor));
+  }
+  /// With surface_correction (bond_loop::end_force_scalar picks it): κθ in the deviatoric term, κ = 2 − m̃/m. A kernel
+  /// of its own, so that the uncorrected loops stay what they were (a select in force_scalar cost 10–20 % of a 2D
+  /// run and moved its round-off).
+  static double corrected_force_scalar(const Params& p, const KernelFields& s, std::size_t i, std::uint64_t /*bond*/,
+                                       double e, double xi, double omega) {
+    const double theta = s.theta[i];
+    const double reduced = s.point_constant[0][i] * theta;  // κθ
     return omega * s.inverse_m[i] *
            (p.alpha_volumetric * theta * xi + p.alpha_deviatoric * (e - reduced * xi * p.inverse_dilatation_factor));
   }

@@ -83,7 +83,7 @@ inline double other_block_force_scalar(const ModelContext& ctx, std::size_t bloc
     if constexpr (!Model::has_bond_kernel)
       throw std::logic_error("other_block_force_scalar: model " + std::string(Model::name) + " has no bond kernel");
     else
-      return Model::force_scalar(ctx.model_params_of<Model>(block), s, j, reverse_bond, e, xi, omega);
+      return end_force_scalar<Model>(pj, ctx.model_params_of<Model>(block), s, j, reverse_bond, e, xi, omega);
   });
 }
 
@@ -288,8 +288,8 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
     const double e_bond = Thermal ? e - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi : e;
     const double omega = Scaled ? influence_of<Influence>(xi, p.horizon) * s.bond_scale[b] : influence_of<Influence>(xi, p.horizon);
     const std::uint64_t partner_bond = reads_partner_bond ? run.reverse[b] : 0;
-    const double t = Model::force_scalar(mp, s, i, b, e_i, xi, omega) +
-                     Model::force_scalar(mp, s, j, partner_bond, e_j, xi, omega);
+    const double t = end_force_scalar<Scaled, Model>(mp, s, i, b, e_i, xi, omega) +
+                     end_force_scalar<Scaled, Model>(mp, s, j, partner_bond, e_j, xi, omega);
     double v = run.volume[j];
     if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
     const double carried = t * v / length;
@@ -745,10 +745,10 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
           const std::uint64_t partner_bond = any_history ? reverse[b] : 0;
           const double e_j = mechanical_extension(ctx, j, g);  // |ξ| and e are the same from j
           const double t_ji = blocks[j] == blocks[i]
-                                  ? model.force_scalar(mp, fields, j, partner_bond, e_j, g.xi, omega)
+                                  ? end_force_scalar<Model>(p, mp, fields, j, partner_bond, e_j, g.xi, omega)
                                   : other_block_force_scalar(ctx, static_cast<std::size_t>(blocks[j]), fields, j,
                                                              partner_bond, e_j, g.xi, ctx.bond_scale.empty() ? 1.0 : ctx.bond_scale[b]);
-          const double t = model.force_scalar(mp, fields, i, b, mechanical_extension(ctx, i, g), g.xi, omega) + t_ji;
+          const double t = end_force_scalar<Model>(p, mp, fields, i, b, mechanical_extension(ctx, i, g), g.xi, omega) + t_ji;
           const double carried = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
           fx += carried * g.y[0];
           fy += carried * g.y[1];
