@@ -245,7 +245,8 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
     const double e_bond = Thermal ? length - xi - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi : e;
     double v = run.volume[j];
     if (partial_volume) v *= partial_volume_factor(xi, p.horizon, run.partial_volume_radius);
-    const double omega = Scaled ? influence_of<Influence>(xi, p.horizon) * s.bond_scale[b] : influence_of<Influence>(xi, p.horizon);
+    const double omega =
+        Scaled ? influence_of<Influence>(xi, p.horizon) * s.bond_scale[b] : influence_of<Influence>(xi, p.horizon);
     const double term = omega * xi * Model::dilatation_extension(s, b, e, xi) * v;
     const bool intact = run.intact[k] != 0;
     const bool breaks = intact && e_bond > run.break_limit * xi;
@@ -259,7 +260,8 @@ inline void run_dilatation(const SameBlockRun& run_in, const MaterialParams& p_i
 }
 
 /// Σ_j of the force density on point i from the bonds of the run; Thermal as for run_dilatation, each end's
-/// kernel with its own thermal stretch, Scaled as for run_dilatation. Not inlined: inlined into the dispatch with both Thermal variants, GCC 12
+/// kernel with its own thermal stretch, Scaled as for run_dilatation (and the model's corrected kernel, if it has
+/// one). Not inlined: inlined into the dispatch with both Thermal variants, GCC 12
 /// vectorised the loop of the models with partner-bond history (lps_plastic, lps_viscoelastic) differently, 40–60 %
 /// slower and with other round-off; on its own each instantiation gets the loop it had before the Thermal switch.
 template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool Thermal, bool Scaled>
@@ -286,7 +288,8 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
     const double e_i = Thermal ? e - s.thermal_stretch[i] * xi : e;
     const double e_j = Thermal ? e - s.thermal_stretch[j] * xi : e;
     const double e_bond = Thermal ? e - 0.5 * (s.thermal_stretch[i] + s.thermal_stretch[j]) * xi : e;
-    const double omega = Scaled ? influence_of<Influence>(xi, p.horizon) * s.bond_scale[b] : influence_of<Influence>(xi, p.horizon);
+    const double omega =
+        Scaled ? influence_of<Influence>(xi, p.horizon) * s.bond_scale[b] : influence_of<Influence>(xi, p.horizon);
     const std::uint64_t partner_bond = reads_partner_bond ? run.reverse[b] : 0;
     const double t = end_force_scalar<Scaled, Model>(mp, s, i, b, e_i, xi, omega) +
                      end_force_scalar<Scaled, Model>(mp, s, j, partner_bond, e_j, xi, omega);
@@ -747,7 +750,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
           const double t_ji = blocks[j] == blocks[i]
                                   ? end_force_scalar<Model>(p, mp, fields, j, partner_bond, e_j, g.xi, omega)
                                   : other_block_force_scalar(ctx, static_cast<std::size_t>(blocks[j]), fields, j,
-                                                             partner_bond, e_j, g.xi, ctx.bond_scale.empty() ? 1.0 : ctx.bond_scale[b]);
+                                                             partner_bond, e_j, g.xi,
+                                                             ctx.bond_scale.empty() ? 1.0 : ctx.bond_scale[b]);
           const double t = end_force_scalar<Model>(p, mp, fields, i, b, mechanical_extension(ctx, i, g), g.xi, omega) + t_ji;
           const double carried = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
           fx += carried * g.y[0];
