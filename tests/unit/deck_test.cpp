@@ -463,13 +463,17 @@ TEST(Deck, ContradictoryOrInsufficientElasticConstants) {
   expect_error(pmb_two, position_of(pmb_two, "60 GPa"), "6e+10 contradicts the 7.2e+10 that youngs_modulus 7.2e+10 and the ν = 0.3333");
 }
 
-TEST(Deck, HorizonNotLargerThanSpacing) {
+// δ < Δx is an error; δ = Δx (m = 1, nearest neighbours only, as convergence studies use) a warning.
+TEST(Deck, HorizonSmallerThanSpacingIsAnErrorAndEqualAWarning) {
   std::string factor = replaced(deck_2d, "horizon_factor: 3.015", "horizon_factor: 0.9");
   expect_error(factor, position_of(factor, "0.9"), "discretization: horizon δ = 0.00045 m is not larger than the spacing Δx = 0.0005 m");
-  std::string metres = replaced(deck_2d, "horizon_factor: 3.015", "horizon: 0.5 mm");
-  expect_error(metres, position_of(metres, "0.5 mm\n  plane"), "(δ/Δx = 1)");
-  std::string body = replaced(deck_2d, "    material: glass\n", "    material: glass\n    horizon_factor: 1\n");
-  expect_error(body, position_of(body, "1\n    shape"), "bodies.plate: horizon δ");
+  std::string metres = replaced(deck_2d, "horizon_factor: 3.015", "horizon: 0.45 mm");
+  expect_error(metres, position_of(metres, "0.45 mm\n  plane"), "(δ/Δx = 0.9)");
+  std::string body = replaced(deck_2d, "    material: glass\n", "    material: glass\n    horizon_factor: 0.99\n");
+  expect_error(body, position_of(body, "0.99\n    shape"), "bodies.plate: horizon δ");
+  Problem nearest = parse(replaced(deck_2d, "horizon_factor: 3.015", "horizon: 0.5 mm"));
+  ASSERT_EQ(nearest.warnings.size(), 1u);
+  EXPECT_NE(nearest.warnings[0].message.find("nearest lattice neighbours only (m = 1)"), std::string::npos);
   Problem wide = parse(replaced(deck_2d, "horizon_factor: 3.015", "horizon_factor: 8"));
   ASSERT_EQ(wide.warnings.size(), 1u);
   EXPECT_TRUE(wide.warnings[0].is_warning);
