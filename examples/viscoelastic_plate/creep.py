@@ -14,7 +14,8 @@ The first form runs deck.yaml (Δx = 5 mm, δ = 15 mm, or the given ones: the de
 DIR/creep.png (u_x at (L, W/2) against time, Peridot and the closed form) and prints the table; --check TOL exits 1
 unless every output time is within TOL (a fraction) of the closed form, relative to the largest displacement. The
 --case shear runs the simple-shear case (b) instead: τ = σ0 on the four edges, γ_xy of the mid row and column
-against τ J(t) (no PNG). The second form runs the convergence study of the paper's Figs 6–7 (m = δ/Δx = 1, 2, 3 at δ = 15 mm; Δx = 5, 2.5 mm at
+against τ J(t) (no PNG); --case hot_shear the same at a uniform 200 °C (§8.2: σ0 = 1 MPa, J with the WLF-shifted
+relaxation times), and the mid row's thermal strain against α ΔT. The second form runs the convergence study of the paper's Figs 6–7 (m = δ/Δx = 1, 2, 3 at δ = 15 mm; Δx = 5, 2.5 mm at
 m = 3) and writes DIR/convergence.png and the table (about 20 minutes on 2 cores)."""
 import argparse
 import csv
@@ -27,6 +28,17 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SIGMA, RELEASE, L, W = 2000.0, 0.005, 0.3, 0.15
+# §8.2: the shear case at a uniform 200 °C, σ0 = 1 MPa, WLF with the paper's eq 44 (c1 = 30, c2 = 100 K, T0 = 110 °C),
+# α = 50e-6 /K from the reference temperature (20 °C: the paper does not give one).
+HOT_SIGMA, HOT_T, REFERENCE_T, WLF_C1, WLF_C2, WLF_T0, ALPHA = 1e6, 473.15, 293.15, 30.0, 100.0, 383.15, 50e-6
+
+
+def wlf_shift(case):
+    """a_T of the case: τ_k → a_T τ_k (1 at the WLF reference temperature)."""
+    if case != "hot_shear":
+        return 1.0
+    above = HOT_T - WLF_T0
+    return 10 ** (-WLF_C1 * above / (WLF_C2 + above))
 E_TERMS = [200, 800, 1500, 1000, 1100, 2700, 2900, 2500, 900, 950, 600, 120, 180, 200, 250]  # MPa, Table 1
 TAUS = [1e-4, 1e-3, 1e-2, 1, 10, 100, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e11, 3e12]
 E_INF, NU = 700.0, 0.3
@@ -37,7 +49,7 @@ def compliance(case="tension"):
     shear creep compliance (γ_xy = τ J for a held shear stress τ: shear)."""
     mu_inf = E_INF * 1e6 / (2 * (1 + NU))
     mu = np.array(E_TERMS) * 1e6 / (2 * (1 + NU))
-    lam = 1 / np.array(TAUS)
+    lam = 1 / (wlf_shift(case) * np.array(TAUS))
     mu0 = mu_inf + mu.sum()
     K = (E_INF + sum(E_TERMS)) * 1e6 / (3 * (1 - 2 * NU))
     kappa = 9 * K * mu0 / (3 * K + 4 * mu0)
@@ -60,7 +72,7 @@ def compliance(case="tension"):
 
     def D(t):
         J = 1 / mu_inf + sum(a * np.exp(r * t) for a, r in zip(amplitude, roots))
-        return J if case == "shear" else 1 / (4 * kappa) + J / 4
+        return 1 / (4 * kappa) + J / 4 if case == "tension" else J
 
     return D
 
@@ -87,12 +99,13 @@ def deck_text(spacing, horizon):
     return text
 
 
-def shear_deck_text(spacing, horizon):
+def shear_deck_text(spacing, horizon, hot=False):
     """The simple-shear case (b): the shear traction τ = σ0 on all four edges (right +y, left −y, top +x, bottom −x,
     each carried by its outer row), released at 5 ms; one point near the centre held, a second one of its row held
     in y (the loads have no moment: this only fixes the rigid motion). Probes on the mid row and the mid column."""
     text = deck_text(spacing, horizon)
     half = spacing / 2
+    sigma = HOT_SIGMA if hot else SIGMA
     start, end = text.index("node_sets:"), text.index("solver:")
     loads = f"""node_sets:
   left: {{shape: {{box: {{min: [-1, -1], max: [{spacing!r}, 1]}}}}}}
@@ -105,17 +118,24 @@ boundary_conditions:
   - {{node_set: centre, displacement: {{x: "0", y: "0"}}}}
   - {{node_set: aside, displacement: {{y: "0"}}}}
 tractions:
-  - {{node_set: right, y: "2000 * (t < 0.00495)"}}
-  - {{node_set: left, y: "-2000 * (t < 0.00495)"}}
-  - {{node_set: top, x: "2000 * (t < 0.00495)"}}
-  - {{node_set: bottom, x: "-2000 * (t < 0.00495)"}}
+  - {{node_set: right, y: "{sigma!r} * (t < 0.00495)"}}
+  - {{node_set: left, y: "{-sigma!r} * (t < 0.00495)"}}
+  - {{node_set: top, x: "{sigma!r} * (t < 0.00495)"}}
+  - {{node_set: bottom, x: "{-sigma!r} * (t < 0.00495)"}}
 """
+    if hot:  # §8.2: the uniform temperature, its thermal strain and the WLF shift
+        loads += f"temperature: {{value: \"{HOT_T!r}\", reference: {REFERENCE_T!r}}}\n"
+        text = text.replace("    prony_series:", f"    thermal_expansion: {ALPHA!r}\n"
+                            f"    wlf: {{c1: {WLF_C1!r}, c2: {WLF_C2!r}, reference_temperature: {WLF_T0!r}}}\n    prony_series:")
+        start, end = text.index("node_sets:"), text.index("solver:")
     text = text[:start] + loads + text[end:]
     probes = f"""    probes:
       - {{name: uy_right, point: [{L - half!r}, {W / 2 - half!r}], field: displacement_y}}
       - {{name: uy_left, point: [{half!r}, {W / 2 - half!r}], field: displacement_y}}
       - {{name: ux_top, point: [{L / 2 - half!r}, {W - half!r}], field: displacement_x}}
       - {{name: ux_bottom, point: [{L / 2 - half!r}, {half!r}], field: displacement_x}}
+      - {{name: ux_right, point: [{L - half!r}, {W / 2 - half!r}], field: displacement_x}}
+      - {{name: ux_left, point: [{half!r}, {W / 2 - half!r}], field: displacement_x}}
 """
     return text[:text.index("    probes:")] + probes
 
@@ -126,13 +146,14 @@ def run(peridot, out, threads, spacing, horizon, case="tension"):
     os.makedirs(out, exist_ok=True)
     deck = os.path.join(out, "deck.yaml")
     with open(deck, "w") as f:
-        f.write(shear_deck_text(spacing, horizon) if case == "shear" else deck_text(spacing, horizon))
+        f.write(deck_text(spacing, horizon) if case == "tension" else shear_deck_text(spacing, horizon, case == "hot_shear"))
     subprocess.run([peridot, "run", "-q", "-t", str(threads), "-o", out, deck], check=True)
     with open(os.path.join(out, "history.csv")) as f:
         rows = list(csv.DictReader(f))
     t = np.array([float(r["time"]) for r in rows])
     D = compliance(case)
-    if case == "shear":
+    sigma = HOT_SIGMA if case == "hot_shear" else SIGMA
+    if case != "tension":
         column = lambda name: np.array([float(r[name]) for r in rows])
         span = L - spacing  # between the probe points, along the row and (W − Δx) along the column
         u = (column("uy_right") - column("uy_left")) / span + (column("ux_top") - column("ux_bottom")) / (W - spacing)
@@ -140,7 +161,11 @@ def run(peridot, out, threads, spacing, horizon, case="tension"):
     else:
         u = np.array([float(r["ux_end"]) for r in rows])
         length = (L - spacing / 2) - spacing / 2  # probe row minus the rollers' row
-    exact = np.array([SIGMA * (D(s) - (D(s - RELEASE) if s >= RELEASE - 1e-12 else 0.0)) * length for s in t])
+    exact = np.array([sigma * (D(s) - (D(s - RELEASE) if s >= RELEASE - 1e-12 else 0.0)) * length for s in t])
+    if case == "hot_shear":  # the free thermal strain α ΔT along the mid row
+        stretch = (np.array([float(r["ux_right"]) for r in rows]) - np.array([float(r["ux_left"]) for r in rows])) / (L - spacing)
+        print(f"thermal strain of the mid row: {stretch[-1]:.6e} (α ΔT = {ALPHA * (HOT_T - REFERENCE_T):.6e}, "
+              f"difference {100 * (stretch[-1] / (ALPHA * (HOT_T - REFERENCE_T)) - 1):.3f} %)")
     return t, u, exact
 
 
@@ -177,7 +202,7 @@ def main():
     p.add_argument("--horizon", type=float, default=15.0, help="δ (mm)")
     p.add_argument("--check", type=float, default=None, help="largest allowed difference (fraction of the largest u)")
     p.add_argument("--convergence", action="store_true")
-    p.add_argument("--case", choices=["tension", "shear"], default="tension")
+    p.add_argument("--case", choices=["tension", "shear", "hot_shear"], default="tension")
     a = p.parse_args()
     if a.convergence:
         cases = [(15.0, 15.0), (7.5, 15.0), (5.0, 15.0), (2.5, 7.5)]  # (Δx, δ) mm: m = 1, 2, 3; then Δx/2 at m = 3
@@ -193,7 +218,7 @@ def main():
     t, u, exact = run(a.peridot, a.out, a.threads, 1e-3 * a.spacing, 1e-3 * a.horizon, a.case)
     scale = np.abs(exact).max()
     error = (u - exact) / scale
-    quantity = "gamma_xy" if a.case == "shear" else "u_x (m)"
+    quantity = "u_x (m)" if a.case == "tension" else "gamma_xy"
     print(f"{'t (ms)':>8} {quantity + ' Peridot':>18} {'closed form':>16} {'error / max':>12}")
     for s, mine, ref, e in zip(t, u, exact, error):
         print(f"{1e3 * s:8.2f} {mine:18.6e} {ref:16.6e} {e:12.3e}")
