@@ -265,6 +265,7 @@ std::int64_t DynamicRelaxation::relax() {
 
 void DynamicRelaxation::advance() {
   State& state = sim_.state();
+  PERIDOT_REQUIRE(committed_u_.size() == state.u.size(), "Simulation::initialize() must run before the first step");
   const double dt = sim_.time_step();
   const std::int64_t k = state.step + 1;
   const double t = static_cast<double>(k) * dt;
