@@ -122,7 +122,9 @@ TEST(Thermoviscoelastic, SecondOrderUpdateConvergesToTheExactRelaxation) {
     const double worst = held_shear_error(block, dt, static_cast<int>(std::lround(4e-3 / dt)));
     std::printf("second-order update, Δt = %g s: largest error of σ/σ0 over 4 ms %.3e\n", dt, worst);
     EXPECT_LT(worst, 0.01);
-    if (previous > 0) EXPECT_LT(worst, 0.6 * previous);
+    if (previous > 0) {
+      EXPECT_LT(worst, 0.6 * previous);
+    }
     previous = worst;
   }
 }
@@ -155,7 +157,10 @@ TEST(Thermoviscoelastic, WlfShiftScalesTheRelaxationTimes) {
   s.parameters.set_number("wlf.c2", c2);
   s.parameters.set_number("wlf.reference_temperature", T0);
   Problem p = testing::box_problem(s);
-  p.temperature = TemperatureSpec{{}, Expression{std::to_string(T), {}, false}, 293};
+  TemperatureSpec temperature;
+  temperature.value = Expression{std::to_string(T), {}, false};
+  temperature.reference = 293;
+  p.temperature = temperature;
   HomogeneousBlock block(s, p);
   const double a_T = std::pow(10.0, -c1 * (T - T0) / (c2 + T - T0));
   EXPECT_NEAR(Thermoviscoelastic::shift_factor(block.model_params<Thermoviscoelastic>(), T), a_T, 1e-15 * a_T);

@@ -67,8 +67,7 @@ double bond_force_states(const ModelContext& ctx, const MaterialParams& p, const
   const bool any_history = !ctx.bonds->reverse.empty();
   const std::uint64_t partner_bond = any_history ? ctx.bonds->reverse[b] : 0;
   // The surface correction's factor, as the force loop applies it (G_ij = G_ji to the bit).
-  const double scale = ctx.bond_scale.empty() ? 1.0 : ctx.bond_scale[b];
-  const double omega = influence(p.influence, g.xi, p.horizon) * (p.surface_correction ? scale : 1.0);
+  const double omega = influence(p.influence, g.xi, p.horizon) * bond_scale(ctx, p, b);
   const double t_ij = end_force_scalar<Model>(p, mp, s, i, b, mechanical_extension(ctx, i, g), g.xi, omega);
   const double e_j = mechanical_extension(ctx, j, g);
   const auto other = static_cast<std::size_t>(ctx.disc->block[j]);
@@ -83,7 +82,7 @@ double bond_force_states(const ModelContext& ctx, const MaterialParams& p, const
         throw std::logic_error("energy failure: model " + std::string(Other::name) + " has no bond kernel");
       else
         return end_force_scalar<Other>(pj, ctx.model_params_of<Other>(other), s, j, partner_bond, e_j, g.xi,
-                                   influence(pj.influence, g.xi, pj.horizon) * (pj.surface_correction ? scale : 1.0));
+                                   influence(pj.influence, g.xi, pj.horizon) * bond_scale(ctx, pj, b));
     });
   }
   return t_ij + t_ji;  // from j: t_ji + t_ij, the same bits

@@ -10,6 +10,11 @@
 
 namespace peridot::bond_loop {
 
+/// The surface correction's factor G of bond b of a block (ModelContext::bond_scale; 1 where the block has none).
+inline double bond_scale(const ModelContext& ctx, const MaterialParams& p, std::uint64_t b) {
+  return p.surface_correction && !ctx.bond_scale.empty() ? ctx.bond_scale[b] : 1.0;
+}
+
 /// The scalar force state of a bond end: the model's corrected_force_scalar where the block has the surface
 /// correction and the model has one (lps: its κ term), else its force_scalar. Corrected is known at compile time
 /// in the vectorised loops (their Scaled flag).

@@ -35,8 +35,8 @@ void Lps::calibrate(ModelContext& ctx, const MaterialParams& block, const Params
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         const std::uint32_t j = bonds.neighbors[b];
         const double xi = bond_length<Dim>(x, i, j);
-        const double factor = ctx.bond_scale.empty() ? 1.0 : ctx.bond_scale[b];
-        scaled += influence(block.influence, xi, block.horizon) * factor * xi * xi * neighbor_volume(ctx, i, j, xi);
+        scaled += influence(block.influence, xi, block.horizon) * bond_scale(ctx, block, b) * xi * xi *
+                  neighbor_volume(ctx, i, j, xi);
       }
       ctx.point_constants[0][i] = 2 - scaled * ctx.inverse_weighted_volume[i];
     }

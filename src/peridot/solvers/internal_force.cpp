@@ -73,9 +73,9 @@ namespace {
 
 /// t_ji for a neighbour in another block (interfaces only): dispatch on the neighbour's model.
 inline double other_block_force_scalar(const ModelContext& ctx, std::size_t block, const KernelFields& s, std::size_t j,
-                                       std::uint64_t reverse_bond, double e, double xi, double scale) {
+                                       std::uint64_t reverse_bond, double e, double xi, std::uint64_t bond) {
   const MaterialParams& pj = ctx.params[block];
-  const double omega = influence(pj.influence, xi, pj.horizon) * (pj.surface_correction ? scale : 1.0);
+  const double omega = influence(pj.influence, xi, pj.horizon) * bond_scale(ctx, pj, bond);
   // Bonds between a correspondence block and another model's block are refused at set-up
   // (CorrespondenceBlocks), so an interface bond never reaches a model without a bond kernel.
   return with_model(pj.model, [&](auto model) -> double {
@@ -121,11 +121,6 @@ void with_scale(bool scaled, F&& f) {
     if (scaled) return f(std::true_type{});
   }
   f(std::false_type{});
-}
-
-/// The surface correction's factor of bond b of a block (1 where the block has none).
-inline double bond_scale(const ModelContext& ctx, const MaterialParams& p, std::uint64_t b) {
-  return p.surface_correction && !ctx.bond_scale.empty() ? ctx.bond_scale[b] : 1.0;
 }
 
 /// Critical stretch of a bond of a point of block `block`: the smaller of its two blocks'.
@@ -750,8 +745,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
           const double t_ji = blocks[j] == blocks[i]
                                   ? end_force_scalar<Model>(p, mp, fields, j, partner_bond, e_j, g.xi, omega)
                                   : other_block_force_scalar(ctx, static_cast<std::size_t>(blocks[j]), fields, j,
-                                                             partner_bond, e_j, g.xi,
-                                                             ctx.bond_scale.empty() ? 1.0 : ctx.bond_scale[b]);
+                                                             partner_bond, e_j, g.xi, b);
           const double t = end_force_scalar<Model>(p, mp, fields, i, b, mechanical_extension(ctx, i, g), g.xi, omega) + t_ji;
           const double carried = t * neighbor_volume(ctx, i, j, g.xi) / g.length;
           fx += carried * g.y[0];
