@@ -1,6 +1,7 @@
 // Adaptive dynamic relaxation (solvers/dynamic_relaxation.hpp): a 3D LPS bar relaxes to the classical
 // uniaxial solution; the stored energy equals the work of the supports; past the iteration limit the run
-// stops naming the residual reached; the deck refuses what a static solution cannot have.
+// stops naming the residual reached; breaking once per step advances a crack step by step to where breaking
+// until stable gets at once; the deck refuses what a static solution cannot have.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -208,6 +209,60 @@ TEST(DynamicRelaxation, IterationLimitNamesTheResidualReached) {
     EXPECT_NE(message.find("relative force residual"), std::string::npos) << message;
     EXPECT_NE(message.find("after 5 iterations"), std::string::npos) << message;
   }
+}
+
+/// Broken bonds (directed) of a run.
+std::size_t broken_bonds(const Simulation& sim) {
+  const auto& broken = sim.bonds().broken;
+  return static_cast<std::size_t>(std::count(broken.begin(), broken.end(), std::uint8_t{1}));
+}
+
+TEST(DynamicRelaxation, BreakingOncePerStepAdvancesTheCrackStepByStep) {
+  // An edge-notched plate pulled to a held opening at which its crack runs: relaxing until nothing breaks
+  // finds the cracked equilibrium in the first step; breaking once per step (Madenci & Oterkus) breaks a
+  // front per step, never un-breaks, and under the held load reaches a step that breaks nothing.
+  auto plate = [](const std::string& breaking, int load_steps) {
+    std::string deck = R"(discretization: {dimension: 2, plane: stress, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  glass: {model: lps, density: 2440, youngs_modulus: 72 GPa, poisson_ratio: 0.22, damage: {critical_stretch: 0.0015}}
+bodies:
+  plate: {material: glass, shape: {box: {min: [0, 0], max: [0.02, 0.015]}}}
+precracks:
+  - segment: {from: [0, 0.0075], to: [0.005, 0.0075]}
+node_sets:
+  top: {shape: {box: {min: [-1, 0.0125], max: [1, 1]}}}
+  bottom: {shape: {box: {min: [-1, -1], max: [1, 0.0025]}}}
+no_fail: [top, bottom]
+boundary_conditions:
+  - {node_set: top, displacement: {x: "0", y: "7e-6"}}
+  - {node_set: bottom, displacement: {x: "0", y: "-7e-6"}}
+solver: {type: relaxation, ramp: false, tolerance: 1e-6, breaking: BREAKING, load_steps: STEPS}
+)";
+    deck.replace(deck.find("BREAKING"), 8, breaking);
+    deck.replace(deck.find("STEPS"), 5, std::to_string(load_steps));
+    return parse_deck(deck, "deck.yaml", ".");
+  };
+  Simulation once(plate("once_per_step", 40));
+  once.initialize();
+  const std::size_t cracked = broken_bonds(*solve(plate("until_stable", 1)));  // pre-crack bonds are never made
+  ASSERT_GT(cracked, 0u);
+  std::size_t before = 0, first = 0;
+  int steps_breaking = 0;
+  while (once.state().step < once.total_steps()) {
+    once.step();
+    const std::size_t now = broken_bonds(once);
+    EXPECT_GE(now, before);
+    if (once.state().step == 1) first = now;
+    if (now == before) break;
+    ++steps_breaking;
+    before = now;
+  }
+  std::cout << "until_stable: " << cracked << " broken bonds in one step; once_per_step: " << first
+            << " in the first step, " << before << " after " << steps_breaking << " steps that broke some\n";
+  EXPECT_LT(first, cracked / 2);
+  EXPECT_GT(steps_breaking, 2);
+  EXPECT_LT(once.state().step, once.total_steps()) << "the held load never stopped breaking bonds";
+  EXPECT_NEAR(static_cast<double>(before), static_cast<double>(cracked), 0.05 * static_cast<double>(cracked));
 }
 
 TEST(DynamicRelaxation, DeckRefusesVelocitiesAndMovingWalls) {

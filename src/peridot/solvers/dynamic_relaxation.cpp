@@ -36,6 +36,13 @@ SolverInfo DynamicRelaxation::info() {
                                    "no time passing, and each step first creeps over Δt under the previous loads, then "
                                    "takes its own with no time passing",
                     .choices = {"continuous", "steps"}},
+                   {.key = "breaking", .type = ValueType::choice, .default_yaml = "until_stable",
+                    .description = "until_stable: after each equilibrium the bonds over their threshold break and the "
+                                   "step is relaxed again until none breaks (the quasi-static answer); once_per_step: "
+                                   "one breaking pass per load step, then one more equilibrium, as Madenci & Oterkus "
+                                   "do: a crack then advances by a few bonds per step, so how far it runs by a given "
+                                   "time depends on the step",
+                    .choices = {"until_stable", "once_per_step"}},
                    {.key = "tolerance", .default_yaml = "1e-8", .range = positive,
                     .description = "equilibrium when the force residual on the free dofs is at most this fraction of the "
                                    "largest of the support reactions, the applied body force, the step's initial "
@@ -85,7 +92,8 @@ DynamicRelaxation::DynamicRelaxation(Simulation& sim)
       tolerance_(sim.problem().solver.parameters.number("tolerance")),
       max_iterations_(sim.problem().solver.parameters.integer("max_iterations")),
       density_factor_(sim.problem().solver.parameters.number("density_factor")),
-      stepped_loads_(sim.problem().solver.parameters.text("load_history") == "steps") {
+      stepped_loads_(sim.problem().solver.parameters.text("load_history") == "steps"),
+      break_once_per_step_(sim.problem().solver.parameters.text("breaking") == "once_per_step") {
   std::vector<double> k;
   stiffness_bound(sim_.model(), k);
   const double factor = density_factor_;
@@ -234,7 +242,7 @@ std::int64_t DynamicRelaxation::relax() {
       throw NumericalError(fmt::format(
           "dynamic relaxation did not converge in load step {} (time {:.6g} s, load factor {:.6g}): relative force "
           "residual {:.3e} after {} iterations, tolerance {:.3e}; raise solver.max_iterations, loosen "
-          "tolerance_ or use more load_steps",
+          "solver.tolerance or use more load_steps",
           state.step + 1, state.time, load_factor_, residual_, iteration, tolerance_));
     double c = 0;
     if (iteration > 0) {
@@ -297,10 +305,16 @@ void DynamicRelaxation::solve_and_commit(double dt) {
   const VectorField wall_before = sim_.has_walls() ? sim_.wall_force() : VectorField();
   solve_dt_ = dt;
   // Relax; break what is over-stretched at equilibrium; relax again (relax() restarts the damped motion
-  // from rest) until nothing breaks.
-  for (std::uint64_t broken = 1; broken > 0; broken_ += broken) {
+  // from rest) until nothing breaks, or, breaking once per step, once.
+  for (;;) {
     relax();
-    broken = sim_.break_bonds();
+    const std::uint64_t broken = sim_.break_bonds();
+    broken_ += broken;
+    if (broken == 0) break;
+    if (break_once_per_step_) {
+      relax();
+      break;
+    }
   }
   set_step_velocity();
   sim_.commit(dt);

@@ -78,8 +78,9 @@ class DynamicRelaxation final : public TimeIntegrator {
   template <class Value>
   double weighted_norm(Value&& value) const;
   void set_loads(double t, double factor);
-  /// Relaxes, breaks what is over-stretched, relaxes again until nothing breaks, and commits over Δt (the
-  /// real time this equilibrium closes), with the external work of the change from committed_u_.
+  /// Relaxes, breaks what is over-stretched, relaxes again until nothing breaks (breaking: once_per_step:
+  /// once), and commits over Δt (the real time this equilibrium closes), with the external work of the change
+  /// from committed_u_.
   void solve_and_commit(double dt);
 
   Simulation& sim_;
@@ -89,16 +90,17 @@ class DynamicRelaxation final : public TimeIntegrator {
   std::int64_t max_iterations_;    ///< per equilibrium
   double density_factor_;          ///< fictitious density / the Gerschgorin bound
   bool stepped_loads_;             ///< load_history: steps
+  bool break_once_per_step_;       ///< breaking: once_per_step
   std::vector<double> density_;  ///< Λ per point (kg/m³ with Δt = 1)
   VectorField body_force_;       ///< the deck's body force at t_k, before the load factor
   std::vector<double> velocity_, force_, previous_force_;  ///< per owned dof
   VectorField committed_u_;      ///< u at the last accepted load step
   VectorField accepted_body_force_;  ///< the body force density of the last accepted equilibrium
   double load_factor_ = 0, residual_ = 0;
-  double solve_dt_ = 0;
+  double solve_dt_ = 0;  ///< the real Δt the equilibrium being relaxed closes (0: an instantaneous one)
   /// The largest of the reaction and applied-force norms at the equilibria so far (a floor of the residual's
   /// reference).
-  double load_scale_ = 0;  ///< the real Δt the equilibrium being relaxed closes (0: an instantaneous one)
+  double load_scale_ = 0;
   std::int64_t iterations_ = 0;
   std::uint64_t broken_ = 0;
 };
