@@ -20,8 +20,9 @@ SolverInfo DynamicRelaxation::info() {
   return {.name = name,
           .summary = "static equilibrium in load steps",
           .description = "adaptive dynamic relaxation (Kilic & Madenci 2010) to static equilibrium in load steps; "
-                         "after each equilibrium the bonds over their critical stretch break and the step is relaxed "
-                         "again until none breaks; one Exodus frame and history row per load step (docs/algorithms.md)",
+                         "after each equilibrium the bonds over their threshold break and the step is relaxed again "
+                         "until none breaks (or once: breaking); one Exodus frame and history row per load step "
+                         "(docs/algorithms.md)",
           .keys = {{.key = "load_steps", .type = ValueType::integer, .default_yaml = "1", .range = at_least_one,
                     .description = "number of load steps N; step k is solved at t_k = k·end_time/N"},
                    {.key = "end_time", .unit = Unit::time, .default_yaml = "1 s", .range = positive,
