@@ -138,8 +138,7 @@ def plot(out, t, x, y, block, damage, ux, uy, from_end, total, separated_at):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    real = x >= 0  # the symmetry layers below y = 0 are drawn too; the one left of x = 0 is not
-    real &= y >= 0
+    real = (x >= 0) & (y >= 0)  # the quarter itself, without its fictitious symmetry layers
     # Four frames up to the first with the bond line cracked through (after it the pieces fly apart).
     through = np.nonzero(from_end >= A - 1e-12)[0]
     last = int(through[0]) if len(through) else len(t) - 1
@@ -191,7 +190,8 @@ def main():
         separated_at = t[-1] + 1e-4
         print(f"the relaxation stopped converging after t = {t[-1] * 1e3:.1f} ms (the joint has come apart):\n  {failure}")
     from_end, total = crack_lengths(x, y, block, damage, spacing)
-    rows = list(csv.DictReader(open(os.path.join(a.out, "history.csv"))))
+    with open(os.path.join(a.out, "history.csv")) as f:
+        rows = list(csv.DictReader(f))
     print("| t (ms) | bonds broken | crack from the strap's end (mm) | cracked overlap (mm) | iterations |")
     print("|---|---|---|---|---|")
     for k, r in enumerate(rows[:len(t)]):
