@@ -14,7 +14,7 @@ struct BlockSetup {
   PlaneKind plane = PlaneKind::none;
   std::string model = "lps";  ///< a registered model name
   InfluenceKind influence = InfluenceKind::constant;
-  int cells[3] = {10, 10, 10};  ///< lattice points along x, y, z (z ignored in 2D)
+  int cells[3] = {10, 10, 10};  ///< lattice points along x, y, z (z ignored in 2D, y and z in 1D)
   double spacing = 1e-3;        ///< m
   double horizon_factor = 3.015;
   double bulk_modulus = 160e9, shear_modulus = 79.3e9;  ///< LPS; PMB uses K and its implied ν
@@ -49,6 +49,7 @@ inline Problem box_problem(const BlockSetup& s) {
   p.dimension = s.dimension;
   p.plane = s.dimension == 2 ? (s.plane == PlaneKind::none ? PlaneKind::stress : s.plane) : PlaneKind::none;
   p.thickness = s.dimension == 2 ? s.spacing : 1;
+  p.area = s.dimension == 1 ? s.spacing * s.spacing : 1;  // a point's volume is then Δx³ in every dimension
   p.spacing = s.spacing;
   p.jitter = s.jitter;
   p.partial_volume = s.partial_volume ? PartialVolumeKind::extended : PartialVolumeKind::none;
@@ -77,7 +78,8 @@ inline Problem box_problem(const BlockSetup& s) {
   Shape box;
   box.kind = Shape::Kind::box;
   box.lo = {0, 0, 0};
-  box.hi = {s.cells[0] * s.spacing, s.cells[1] * s.spacing, s.dimension == 3 ? s.cells[2] * s.spacing : 0.0};
+  box.hi = {s.cells[0] * s.spacing, s.dimension >= 2 ? s.cells[1] * s.spacing : 0.0,
+            s.dimension == 3 ? s.cells[2] * s.spacing : 0.0};
   b.shape = box;
   b.horizon = s.horizon_factor * s.spacing;
   p.bodies.push_back(b);

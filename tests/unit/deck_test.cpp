@@ -142,6 +142,35 @@ void expect_error(const std::string& deck, std::pair<int, int> at, const std::st
                 << "'; got:\n" << all;
 }
 
+const std::string deck_1d = R"deck(discretization:
+  dimension: 1
+  area: 2 mm^2
+  spacing: 1 mm
+  horizon_factor: 3
+materials:
+  epoxy:
+    model: thermoviscoelastic
+    density: 1810
+    youngs_modulus: 700 MPa
+    prony_series:
+      - {youngs_modulus: 200 MPa, relaxation_time: 1e-4 s}
+    damage: {fracture_energy: 5 J/m^2, criterion: energy}
+bodies:
+  bar: {material: epoxy, shape: {box: {min: [0], max: [0.05]}}}
+precracks:
+  - at: 0.0301
+node_sets:
+  left: {shape: {box: {min: [-1], max: [0.001]}}}
+  right: {shape: {box: {min: [0.049], max: [1]}}}
+boundary_conditions:
+  - {node_set: left, displacement: {x: "0"}}
+tractions:
+  - {node_set: right, x: "1e6 * min(t / 0.001, 1)"}
+solver: {type: relaxation, load_steps: 4, end_time: 2 ms}
+output:
+  history: {every: 1, probes: [{name: end, point: [0.0495], field: displacement_x}]}
+)deck";
+
 // ---------------------------------------------------------------------------------------------
 // Good decks
 
@@ -442,7 +471,7 @@ TEST(Deck, OutOfRange) {
   std::string jitter = replaced(deck_2d, "  thickness: 1 mm\n", "  thickness: 1 mm\n  jitter: 0.5\n");
   expect_error(jitter, position_of(jitter, "0.5\n"), "discretization.jitter: must be [0, 0.5), got 0.5");
   std::string dimension = replaced(deck_2d, "dimension: 2", "dimension: 4");
-  expect_error(dimension, position_of(dimension, "4\n"), "discretization.dimension: must be [2, 3], got 4");
+  expect_error(dimension, position_of(dimension, "4\n"), "discretization.dimension: must be [1, 3], got 4");
 }
 
 TEST(Deck, ContradictoryOrInsufficientElasticConstants) {
@@ -531,6 +560,53 @@ TEST(Deck, DimensionOnlyKeys) {
   expect_error(no_plane, position_of(no_plane, "discretization"), "discretization: missing required key 'plane'");
   std::string short_point = replaced(deck_3d, "max: [1, 1, 0.002]", "max: [1, 1]");
   expect_error(short_point, position_of(short_point, "[1, 1]"), "expected [x, y, z] (m)");
+}
+
+// A bar (dimension: 1): area A, points [x], x components only, Young's modulus alone, a precrack at a point; the
+// models without a 1D form are refused by name.
+TEST(Deck, OneDimensionalBar) {
+  const Problem p = parse(deck_1d);
+  EXPECT_EQ(p.dimension, 1);
+  EXPECT_DOUBLE_EQ(p.area, 2e-6);
+  EXPECT_DOUBLE_EQ(p.cross_section(), 2e-6);
+  EXPECT_DOUBLE_EQ(p.materials[0].elastic.youngs_modulus, 700e6);
+  ASSERT_EQ(p.precracks.size(), 1u);
+  EXPECT_TRUE(p.precracks[0].is_point);
+  EXPECT_DOUBLE_EQ(p.precracks[0].at, 0.0301);
+  const std::string resolved = resolved_deck_yaml(p);
+  EXPECT_EQ(resolved_deck_yaml(parse(resolved)), resolved);
+
+  Simulation sim(p);
+  const Discretization& disc = sim.discretization();
+  ASSERT_EQ(disc.num_points(), 50u);
+  for (std::size_t i = 0; i < disc.num_points(); ++i) {
+    EXPECT_EQ(disc.x(i, 1), 0.0);
+    EXPECT_DOUBLE_EQ(disc.volume[i], 1e-3 * 2e-6);
+  }
+  // The precrack at x = 30.1 mm cuts the bonds of the points 28…30 mm to those of 31…33 mm: 1 + 2 + 3 pairs.
+  const BondList& bonds = sim.bonds();
+  std::size_t crossing = 0;
+  for (std::size_t i = 0; i < disc.num_points(); ++i)
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
+      crossing += (disc.x(i, 0) - 0.0301) * (disc.x(bonds.neighbors[b], 0) - 0.0301) < 0;
+  EXPECT_EQ(crossing, 0u) << "no bond crosses the precrack";
+
+  std::string lps = replaced(deck_1d, "model: thermoviscoelastic", "model: lps");
+  expect_error(lps, position_of(lps, "lps"), "model lps has no 1D form (discretization.dimension: 1); in 1D use pmb, thermoviscoelastic");
+  std::string y = replaced(deck_1d, "displacement: {x: \"0\"}", "displacement: {x: \"0\", y: \"0\"}");
+  expect_error(y, position_of(y, "y: \"0\""), "'y' applies to 2D and 3D decks only, and this deck has dimension 1");
+  std::string nu = replaced(deck_1d, "    youngs_modulus: 700 MPa\n", "    youngs_modulus: 700 MPa\n    poisson_ratio: 0.3\n");
+  expect_error(nu, position_of(nu, "0.3"), "a 1D bar takes youngs_modulus only; remove poisson_ratio");
+  std::string shear = replaced(deck_1d, "{youngs_modulus: 200 MPa", "{shear_modulus: 200 MPa");
+  expect_error(shear, position_of(shear, "shear_modulus: 200"), "'shear_modulus' applies to 2D and 3D decks only");
+  std::string thickness = replaced(deck_1d, "  area: 2 mm^2\n", "  thickness: 2 mm\n");
+  expect_error(thickness, position_of(thickness, "thickness"), "'thickness' applies to 2D decks only, and this deck has dimension 1");
+  std::string segment = replaced(deck_1d, "  - at: 0.0301", "  - segment: {from: [0.03], to: [0.03]}");
+  expect_error(segment, position_of(segment, "segment"), "'segment' applies to 2D decks only");
+  std::string point = replaced(deck_1d, "point: [0.0495]", "point: [0.0495, 0]");
+  expect_error(point, position_of(point, "[0.0495, 0]"), "expected [x] (m)");
+  std::string area_in_2d = replaced(deck_2d, "  thickness: 1 mm\n", "  thickness: 1 mm\n  area: 1\n");
+  expect_error(area_in_2d, position_of(area_in_2d, "area"), "'area' applies to 1D decks only");
 }
 
 TEST(Deck, ExclusivePairsNeedExactlyOne) {

@@ -64,6 +64,15 @@ TEST(CrackCrossings, TwoDimensionsThreeSpacingsIs18BondsAnd36Micropotentials) {
   EXPECT_EQ(crack_micropotentials(3, 3.0), 140);
 }
 
+// A bar: the bonds crossing a point between two lattice points, 1 + 2 + … + m of them (m = ⌊δ/Δx⌋).
+TEST(CrackCrossings, OneDimensionIsTheTriangularNumber) {
+  EXPECT_EQ(crack_crossing_bonds(1, 3.0), 6);
+  EXPECT_EQ(crack_crossing_bonds(1, 3.015), 6);
+  EXPECT_EQ(crack_micropotentials(1, 3.0), 12);
+  EXPECT_EQ(crack_crossing_bonds(1, 1.0), 1);
+  EXPECT_EQ(crack_crossing_bonds(1, 10.0), 55);
+}
+
 TEST(CrackCrossings, MatchBruteForceForOtherHorizons) {
   for (double m : {1.0, 1.5, 2.0, 2.5, 3.015, 4.0, 5.0, 6.3}) {
     SCOPED_TRACE(m);

@@ -46,6 +46,23 @@ TEST(MaterialConstants, PmbMicromodulusAndCriticalStretch2D) {
   }
 }
 
+// A bar of area A (box_problem: A = Δx²): c0 = 2E/(Aδ²), s0 = √(3G0/(Eδ)). And the closed form against the
+// lattice: the bonds crossing a point of a bar at m = δ/Δx = 400, each at s0 with its energy ½ c0 s0² ξ V V,
+// take G0 A with them to within 2/m (Σ k² = m³/3 (1 + 3/(2m) + …)).
+TEST(MaterialConstants, PmbMicromodulusAndCriticalStretch1D) {
+  const ResolvedMaterial p_all = resolve(1, PlaneKind::none, "pmb", 500);
+  const MaterialParams& p = p_all.block;
+  const double E = p.elastic.youngs_modulus, delta = 3e-3, A = 1e-6;
+  const double c0 = std::get<Pmb::Params>(p_all.model).micromodulus;
+  EXPECT_NEAR(c0, 2 * E / (A * delta * delta), 1e-12 * c0);
+  EXPECT_NEAR(p.critical_stretch, std::sqrt(3 * 500 / (E * delta)), 1e-12);
+  const int m = 400;
+  const double dx = delta / m, V = A * dx, s0 = p.critical_stretch;
+  double work = 0;
+  for (int k = 1; k <= m; ++k) work += k * 0.5 * c0 * s0 * s0 * (k * dx) * V * V;  // k bonds of length k Δx cross
+  EXPECT_NEAR(work / (500 * A), 1.0, 2.0 / m);
+}
+
 TEST(MaterialConstants, LpsCoefficients) {
   const ResolvedMaterial p3_all = resolve(3, PlaneKind::none, "lps", 100);
   const MaterialParams& p3 = p3_all.block;

@@ -1,6 +1,7 @@
 // Analytic invariants every model must satisfy (docs/design.md, "Tests every model passes"): zero force under rigid motion, Σ f V = 0 and
 // zero net moment, and f = −∂W/∂u by finite differences of the total strain energy. Run for PMB and
-// LPS, in 3D and in 2D (plane stress and plane strain), for the three influence functions, and for the
+// LPS, in 3D and in 2D (plane stress and plane strain), for the three influence functions, the 1D bars of the
+// models that have one (pmb, thermoviscoelastic), and for the
 // inelastic models with a random history: f = −∂W/∂u on the elastic branch (lps_plastic below yield,
 // lps_viscoelastic and thermoviscoelastic with no time elapsed), momentum also while every point flows
 // plastically.
@@ -34,9 +35,10 @@ BlockSetup setup_for(const Case& c, double yield_stress = 1e12) {
   s.parameters.set_number("yield_stress", yield_stress);  // each model takes the keys it has
   s.parameters.set_number("relaxing_fraction", 0.5);
   s.parameters.set_number("relaxation_time", 1e-5);
-  if (c.model == "thermoviscoelastic")  // two Prony terms; the elastic constants give κ and μ∞
+  if (c.model == "thermoviscoelastic")  // two Prony terms; the elastic constants give κ and μ∞ (E∞ in 1D)
     for (int k = 0; k < 2; ++k) {
-      s.parameters.set_number("prony_series[" + std::to_string(k) + "].shear_modulus", 20e9 * (k + 1));
+      const std::string modulus = c.dimension == 1 ? "].youngs_modulus" : "].shear_modulus";
+      s.parameters.set_number("prony_series[" + std::to_string(k) + modulus, 20e9 * (k + 1));
       s.parameters.set_number("prony_series[" + std::to_string(k) + "].relaxation_time", 1e-5 * (k + 1));
     }
   s.dimension = c.dimension;
@@ -45,7 +47,8 @@ BlockSetup setup_for(const Case& c, double yield_stress = 1e12) {
   s.influence = c.influence;
   s.parameters.set_boolean("surface_correction", c.surface_correction);
   if (c.dimension == 3) s.cells[0] = s.cells[1] = s.cells[2] = 7;
-  else s.cells[0] = s.cells[1] = 12;
+  else if (c.dimension == 2) s.cells[0] = s.cells[1] = 12;
+  else s.cells[0] = 30;
   s.jitter = 0.1;  // irregular points: no symmetry helps the sums cancel
   return s;
 }
@@ -129,7 +132,7 @@ TEST_P(ModelInvariants, RigidMotionGivesZeroForce) {
     // Rotation about z (and, in 3D, then about x): u = R x − x.
     Vec3 r{std::cos(angle) * x.x - std::sin(angle) * x.y, std::sin(angle) * x.x + std::cos(angle) * x.y, x.z};
     if (dim == 3) r = {r.x, std::cos(angle) * r.y - std::sin(angle) * r.z, std::sin(angle) * r.y + std::cos(angle) * r.z};
-    rotation.set(i, r - x);
+    if (dim >= 2) rotation.set(i, r - x);  // a bar's points have x only
   }
   EXPECT_LT(max_abs(evaluate(sim, translation).force_times_volume), 1e-9 * scale);
   EXPECT_LT(max_abs(evaluate(sim, rotation).force_times_volume), 1e-6 * scale);
@@ -226,6 +229,11 @@ const Case cases[] = {
     {"LpsViscoelastic2dPlaneStrain", 2, PlaneKind::strain, "lps_viscoelastic", InfluenceKind::constant},
     {"Thermoviscoelastic3d", 3, PlaneKind::none, "thermoviscoelastic", InfluenceKind::inverse_distance},
     {"Thermoviscoelastic2dPlaneStress", 2, PlaneKind::stress, "thermoviscoelastic", InfluenceKind::inverse_distance},
+    {"Pmb1d", 1, PlaneKind::none, "pmb", InfluenceKind::constant},
+    {"Pmb1dGaussianSurfaceCorrection", 1, PlaneKind::none, "pmb", InfluenceKind::gaussian, true},
+    {"Thermoviscoelastic1d", 1, PlaneKind::none, "thermoviscoelastic", InfluenceKind::inverse_distance},
+    {"Thermoviscoelastic1dSurfaceCorrection", 1, PlaneKind::none, "thermoviscoelastic", InfluenceKind::inverse_distance,
+     true},
 };
 
 INSTANTIATE_TEST_SUITE_P(AllModels, ModelInvariants, ::testing::ValuesIn(cases),
@@ -234,6 +242,7 @@ INSTANTIATE_TEST_SUITE_P(AllModels, ModelInvariants, ::testing::ValuesIn(cases),
 const Case damaged_cases[] = {
     {"Pmb3d", 3, PlaneKind::none, "pmb", InfluenceKind::constant},
     {"Pmb2dPlaneStrainGaussian", 2, PlaneKind::strain, "pmb", InfluenceKind::gaussian},
+    {"Pmb1d", 1, PlaneKind::none, "pmb", InfluenceKind::constant},
     {"LpsPlastic3d", 3, PlaneKind::none, "lps_plastic", InfluenceKind::constant},
     {"LpsPlastic3dInverseDistance", 3, PlaneKind::none, "lps_plastic", InfluenceKind::inverse_distance},
     {"LpsPlastic2dPlaneStressGaussian", 2, PlaneKind::stress, "lps_plastic", InfluenceKind::gaussian},

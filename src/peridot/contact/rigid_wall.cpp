@@ -1,6 +1,7 @@
 // Penalty contact of the points with rigid frictionless planes (rigid_wall.hpp).
 #include "peridot/contact/rigid_wall.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -61,9 +62,16 @@ RigidWalls::RigidWalls(const Problem& problem, const ModelContext& model) : mode
   for (const RigidWallSpec& s : problem.rigid_walls)
     walls_.push_back({s.name, s.point, s.normal, s.speed, s.stiffness_factor});
   // Σ_j V_j c/ξ over a full family: ∫ 4πξ² (c/ξ) dξ = 2π c δ² in 3D; in 2D, V = h × area and
-  // ∫ 2πξ h (c/ξ) dξ = 2π h c δ.
+  // ∫ 2πξ h (c/ξ) dξ = 2π h c δ; in 1D the integral diverges at ξ → 0 and the lattice's sum is
+  // 2 A c Σ_{k ≤ δ/Δx} 1/k.
   for (const MaterialParams& p : model.params) {
     const double delta = p.horizon, c = p.stable_micromodulus;
+    if (p.dimension == 1) {
+      double harmonic = 0;
+      for (long k = 1; k <= static_cast<long>(std::floor(delta / problem.spacing * (1 + 1e-10))); ++k) harmonic += 1.0 / k;
+      point_stiffness_.push_back(2 * problem.area * c * std::max(harmonic, 1.0));
+      continue;
+    }
     point_stiffness_.push_back(p.dimension == 3 ? 2 * std::numbers::pi * c * delta * delta
                                                 : 2 * std::numbers::pi * problem.thickness * c * delta);
   }

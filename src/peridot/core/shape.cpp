@@ -24,8 +24,8 @@ void axial_coordinates(const Shape& s, Vec3 p, int dimension, double& along, dou
 bool Shape::contains(Vec3 p, int dimension) const {
   switch (kind) {
     case Kind::box:
-      return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y &&
-             (dimension == 2 || (p.z >= lo.z && p.z <= hi.z));
+      return p.x >= lo.x && p.x <= hi.x && (dimension == 1 || (p.y >= lo.y && p.y <= hi.y)) &&
+             (dimension <= 2 || (p.z >= lo.z && p.z <= hi.z));
     case Kind::cylinder:
     case Kind::tube: {
       double along, r2;
@@ -91,7 +91,8 @@ BoundingBox Shape::bounds(int dimension) const {
       b = children.empty() ? BoundingBox{} : children[0].bounds(dimension);
       break;
   }
-  if (dimension == 2) b.lo.z = b.hi.z = 0;
+  if (dimension <= 2) b.lo.z = b.hi.z = 0;
+  if (dimension == 1) b.lo.y = b.hi.y = 0;
   return b;
 }
 

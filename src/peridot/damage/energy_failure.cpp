@@ -19,7 +19,11 @@ double crack_crossing_bonds(int dimension, double m) {
   const double cutoff = m * (1 + 1e-10), cutoff2 = cutoff * cutoff;
   const long r = static_cast<long>(std::floor(cutoff));
   double sum = 0;
-  for (long normal = 1; normal <= r; ++normal)
+  for (long normal = 1; normal <= r; ++normal) {
+    if (dimension == 1) {  // a bar: the bonds of length n Δx crossing a point between two points
+      sum += static_cast<double>(normal);
+      continue;
+    }
     for (long a = -r; a <= r; ++a) {
       if (dimension == 2) {
         if (static_cast<double>(normal * normal + a * a) <= cutoff2) sum += static_cast<double>(normal);
@@ -28,10 +32,11 @@ double crack_crossing_bonds(int dimension, double m) {
       for (long b = -r; b <= r; ++b)
         if (static_cast<double>(normal * normal + a * a + b * b) <= cutoff2) sum += static_cast<double>(normal);
     }
+  }
   return sum;
 }
 
-EnergyFailure::EnergyFailure(const ModelContext& ctx, double spacing, double thickness) {
+EnergyFailure::EnergyFailure(const ModelContext& ctx, double spacing, double cross_section) {
   const std::size_t blocks = ctx.params.size();
   count_.assign(blocks, 0.0);
   threshold_.assign(blocks, std::numeric_limits<double>::infinity());
@@ -39,7 +44,8 @@ EnergyFailure::EnergyFailure(const ModelContext& ctx, double spacing, double thi
     const MaterialParams& p = ctx.params[b];
     if (!(p.fracture_energy > 0)) continue;
     count_[b] = crack_micropotentials(p.dimension, p.horizon / spacing);
-    const double area = p.dimension == 2 ? spacing * thickness : spacing * spacing;  // A_c
+    // A_c: the crack plane's cell, the bar's section in 1D
+    const double area = p.dimension == 1 ? cross_section : p.dimension == 2 ? spacing * cross_section : spacing * spacing;
     threshold_[b] = count_[b] > 0 ? 2 * p.fracture_energy * area / count_[b] : 0.0;
   }
   const std::size_t n = ctx.bonds->num_bonds();

@@ -34,9 +34,9 @@ inline double crack_micropotentials(int dimension, double m) { return 2 * crack_
 /// (MaterialParams::fracture_energy > 0). Held by the Simulation only when some block does.
 class EnergyFailure {
  public:
-  /// Thresholds per block from each block's Gc, δ and the lattice spacing Δx (h: thickness, 2D); per-bond
+  /// Thresholds per block from each block's Gc, δ and the lattice spacing Δx (cross_section: h in 2D, A in 1D); per-bond
   /// arrays for the bonds of ctx (all zero: the reference configuration carries no work).
-  EnergyFailure(const ModelContext& ctx, double spacing, double thickness);
+  EnergyFailure(const ModelContext& ctx, double spacing, double cross_section);
 
   /// N_c of block b (0 for a block without the energy criterion).
   double micropotentials(std::size_t block) const { return count_[block]; }

@@ -32,6 +32,14 @@ struct HorizonInput {
   bool given() const { return horizon || factor; }
 };
 
+/// "pmb, thermoviscoelastic": the models with a 1D form.
+std::string one_dimensional_models() {
+  std::vector<std::string_view> names;
+  for (const ModelInfo& m : material_models())
+    if (m.one_dimensional) names.push_back(m.name);
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
 HorizonInput read_horizon(const MapReader& r) {
   HorizonInput h{r.optional_number("horizon"), r.optional_number("horizon_factor"), {}};
   h.pos = r[h.horizon ? "horizon" : "horizon_factor"].pos;
@@ -93,7 +101,7 @@ struct Parser {
   void peek_dimension(const YAML::Node& discretization) {
     if (!discretization.IsMap()) return;
     const YAML::Node& d = discretization["dimension"];
-    if (d.IsScalar() && (d.Scalar() == "2" || d.Scalar() == "3")) ctx.dimension = d.Scalar() == "2" ? 2 : 3;
+    if (d.IsScalar() && (d.Scalar() == "1" || d.Scalar() == "2" || d.Scalar() == "3")) ctx.dimension = std::stoi(d.Scalar());
   }
 
   void parse_discretization(const Value& v) {
@@ -103,6 +111,7 @@ struct Parser {
     p.dimension = ctx.dimension == 0 ? 3 : ctx.dimension;
     p.plane = r["plane"].text == "stress" ? PlaneKind::stress : r["plane"].text == "strain" ? PlaneKind::strain : PlaneKind::none;
     p.thickness = p.dimension == 2 ? r["thickness"].number : 1.0;
+    p.area = p.dimension == 1 ? r["area"].number : 1.0;
     spacing = r.optional_number("spacing");
     p.spacing = spacing.value_or(0);
     p.lattice_origin = r["lattice_origin"].point;
@@ -170,7 +179,11 @@ struct Parser {
       if (model && model->dimension != 0 && model->dimension != p.dimension)
         ctx.error(r["model"].pos, r.path_of("model"),
                   fmt::format("model {} is implemented in {}D only (discretization.dimension: {})", model->name,
-                              model->dimension, model->dimension));
+                              model->dimension, p.dimension));
+      else if (model && p.dimension == 1 && !model->one_dimensional)
+        ctx.error(r["model"].pos, r.path_of("model"),
+                  fmt::format("model {} has no 1D form (discretization.dimension: 1); in 1D use {}", model->name,
+                              one_dimensional_models()));
       if (model && model->check) model->check(r, m.parameters, ctx);
       p.materials.push_back(std::move(m));
     });
@@ -239,6 +252,18 @@ struct Parser {
     static constexpr std::string_view order[] = {"youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus"};
     for (std::string_view key : order)
       if (r.present(key) && !r.given(key)) return {};  // already reported as invalid
+    if (p.dimension == 1) {
+      // A bar is Young's modulus alone: ν and the moduli of a 3D solid do not enter a 1D model.
+      for (std::string_view key : order)
+        if (key != "youngs_modulus" && r.given(key))
+          ctx.error(r[key].pos, r.path_of(key), "a 1D bar takes youngs_modulus only; remove " + std::string(key));
+      if (!r.given("youngs_modulus")) {
+        ctx.error(r.owner(), r.path(), fmt::format("model {} in 1D needs youngs_modulus", model.name));
+        return {};
+      }
+      const double E = r["youngs_modulus"].number;
+      return {E / 3, E / 2, E, 0.0};  // ν = 0: a bar's lateral strain is not modelled
+    }
 
     std::vector<Known> known;
     std::string implied;  // why ν is known without being given
@@ -402,7 +427,8 @@ struct Parser {
       MapReader r(ctx, node, pos, path, deck_section("precracks[i]").keys);
       PrecrackSpec c;
       c.pos = pos;
-      c.is_segment = !r.present("rectangle");
+      c.is_segment = !r.present("rectangle") && !r.present("at");
+      if (r.given("at")) c.is_point = true, c.at = r["at"].number;
       if (r.given("segment")) {
         MapReader s(ctx, r["segment"].node, r["segment"].key_pos, r.path_of("segment"), deck_section("precracks[i].segment").keys);
         c.a = s["from"].point;
@@ -454,7 +480,10 @@ struct Parser {
       any_present = any_present || r.present(key);
       if (r.given(key)) components[d] = r[key].expression;
     }
-    if (!any_present) ctx.error(r.owner(), r.path(), p.dimension == 2 ? "give at least one of x, y" : "give at least one of x, y, z");
+    if (!any_present)
+      ctx.error(r.owner(), r.path(), p.dimension == 1   ? "give x"
+                                     : p.dimension == 2 ? "give at least one of x, y"
+                                                        : "give at least one of x, y, z");
     return components;
   }
 
@@ -555,9 +584,11 @@ struct Parser {
         ctx.error(r["speed"].pos, r.path_of("speed"),
                   "a wall with contact: symmetry must be at rest (its mirror images would move with it)");
       if (r.given("normal")) {
-        if (p.dimension == 2) w.normal.z = 0;
+        if (p.dimension <= 2) w.normal.z = 0;
+        if (p.dimension == 1) w.normal.y = 0;
         if (norm(w.normal) == 0)
-          ctx.error(r["normal"].pos, r.path_of("normal"), "must not be zero (in 2D: its x, y must not both be zero)");
+          ctx.error(r["normal"].pos, r.path_of("normal"),
+                    p.dimension == 1 ? "must not be zero (in 1D: its x)" : "must not be zero (in 2D: its x, y must not both be zero)");
         else
           w.normal = (1 / norm(w.normal)) * w.normal;
       }

@@ -87,9 +87,12 @@ std::optional<ValueError> read_choice(const KeySpec& spec, const YAML::Node& nod
 }
 
 std::optional<ValueError> read_point(const KeySpec& spec, const YAML::Node& node, int dimension, Value& out) {
-  std::string expected = dimension == 3 ? "[x, y, z]" : "[x, y] or [x, y, z]";
+  // dimension 0: the deck's own is invalid (reported there), so any length passes here.
+  std::string expected = dimension == 3 ? "[x, y, z]" : dimension == 2 ? "[x, y] or [x, y, z]" : dimension == 1 ? "[x]"
+                                                                                                             : "[x], [x, y] or [x, y, z]";
   std::size_t n = node.IsSequence() ? node.size() : 0;
-  bool size_ok = n == 3 || (n == 2 && dimension != 3);
+  // Three components are also what the defaults give ([0, 0, 0]) in any dimension; a 1D deck's points lie on y = z = 0.
+  bool size_ok = n == 3 || (n == 2 && (dimension == 2 || dimension == 0)) || (n == 1 && (dimension == 1 || dimension == 0));
   if (!size_ok) return ValueError{fmt::format("expected {} (m), got {}", expected, describe(node))};
   for (std::size_t d = 0; d < n; ++d) {
     KeySpec component{.key = spec.key, .unit = Unit::length};
@@ -181,7 +184,9 @@ MapReader::MapReader(DeckContext& context, const YAML::Node& node, SourcePos own
 }
 
 bool MapReader::applies(const KeySpec& spec) const {
-  return spec.dimension == 0 || context_.dimension == 0 || spec.dimension == context_.dimension;
+  if (context_.dimension == 0) return true;
+  return (spec.dimension == 0 || spec.dimension == context_.dimension) &&
+         (spec.min_dimension == 0 || context_.dimension >= spec.min_dimension);
 }
 
 const KeySpec* MapReader::find_key(std::string_view key) const {
@@ -211,8 +216,9 @@ void MapReader::read_entries(const YAML::Node& node) {
     }
     present_[key] = key_pos;
     if (!applies(*spec)) {
-      context_.error(key_pos, path_, fmt::format("'{}' applies to {}D decks only, and this deck has dimension {}", key,
-                                                 spec->dimension, context_.dimension));
+      context_.error(key_pos, path_, fmt::format("'{}' applies to {} decks only, and this deck has dimension {}", key,
+                                                 spec->dimension != 0 ? fmt::format("{}D", spec->dimension) : "2D and 3D",
+                                                 context_.dimension));
       continue;
     }
     Value value;

@@ -81,6 +81,7 @@ function (equations (4) and (5) of the pmb page):
 
 - (D1) 3D: G0 = (π c0 s0²/2) ∫₀^δ ω ξ⁴ dξ, so s0 = √(5G0/(9Kδ)) for ω = 1
 - (D2) 2D, thickness h: G0 = h c0 s0² ∫₀^δ ω ξ³ dξ, so s0 = √(πG0/(3K′δ)) for ω = 1
+- 1D, a bar of area A: G0 = (A c0 s0²/2) ∫₀^δ ω ξ² dξ, so s0 = √(3G0/(Eδ)) for ω = 1
 
 With `criterion: energy` (Madenci & Oterkus 2017, §6; docs/algorithms.md §14) a bond breaks by the work done on
 it instead, whatever the model's force law, so that viscous or plastic work counts. Each bond keeps

@@ -38,7 +38,9 @@ struct ModelInfo {
   /// MaterialSpec::parameters as "KEY.SUBKEY".
   std::vector<SectionSpec> sections;
   ModelDoc doc;
-  int dimension = 0;  ///< 0: 2D and 3D; 3: 3D only (the deck refuses the model in 2D)
+  int dimension = 0;  ///< 0: 2D and 3D (and 1D when one_dimensional); 3: 3D only (the deck refuses the model in 2D)
+  /// The model has a 1D form, a bar of area A calibrated to Young's modulus alone (discretization.dimension: 1).
+  bool one_dimensional = false;
   /// The one influence function the model is calibrated for ("inverse_distance": the deck refuses another
   /// and takes this one when none is given); empty: any.
   std::string_view influence;

@@ -46,6 +46,7 @@ std::string presence(const KeySpec& k, const std::vector<KeySpec>& section) {
     text = fmt::format("default {}", k.default_yaml);
   }
   if (k.dimension != 0) text += fmt::format("{}{}D only", text.empty() ? "" : "; ", k.dimension);
+  if (k.min_dimension == 2) text += fmt::format("{}2D and 3D only", text.empty() ? "" : "; ");
   return text;
 }
 
@@ -104,9 +105,11 @@ void print_section(std::ostream& out, std::string_view title, std::string_view d
   print_table(out, rows, markdown);
 }
 
-std::string_view elastic_constants_rule(const ModelInfo& m) {
-  return m.bond_based ? "one modulus; ν is implied (1/4 in 3D and plane strain, 1/3 in plane stress)"
-                      : "any two of bulk_modulus, shear_modulus, youngs_modulus, poisson_ratio";
+std::string elastic_constants_rule(const ModelInfo& m) {
+  std::string rule = m.bond_based ? "one modulus; ν is implied (1/4 in 3D and plane strain, 1/3 in plane stress)"
+                                  : "any two of bulk_modulus, shear_modulus, youngs_modulus, poisson_ratio";
+  if (m.one_dimensional) rule += "; in 1D (a bar) youngs_modulus alone";
+  return rule;
 }
 
 void print_models(std::ostream& out, bool markdown) {
@@ -127,7 +130,7 @@ void print_models(std::ostream& out, bool markdown) {
 }
 
 void print_units(std::ostream& out, bool markdown) {
-  constexpr Unit units[] = {Unit::length,   Unit::time,     Unit::pressure,     Unit::density,
+  constexpr Unit units[] = {Unit::length,   Unit::area, Unit::time,     Unit::pressure,     Unit::density,
                             Unit::energy_per_area, Unit::velocity, Unit::force_density, Unit::rate,
                             Unit::temperature, Unit::specific_heat, Unit::thermal_expansion};
   out << (markdown ? "## Units\n\nNumbers are SI. A number may carry a unit of its key's quantity, e.g. "

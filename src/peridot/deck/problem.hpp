@@ -105,7 +105,10 @@ struct BodySpec {
 
 struct PrecrackSpec {
   SourcePos pos;
-  // 2D: segment from a to b. 3D: parallelogram origin + s·edge1 + t·edge2, s,t ∈ [0,1].
+  // 1D: the position `at` on the bar. 2D: segment from a to b. 3D: parallelogram origin + s·edge1 + t·edge2,
+  // s,t ∈ [0,1].
+  bool is_point = false;
+  double at = 0;
   bool is_segment = true;
   Vec3 a, b;                  ///< segment end points
   Vec3 origin, edge1, edge2;  ///< rectangle
@@ -214,6 +217,7 @@ struct Problem {
   int dimension = 3;
   PlaneKind plane = PlaneKind::none;
   double thickness = 1;  ///< h (m), 2D only
+  double area = 1;       ///< A (m²) of a bar, 1D only
   double spacing = 0;    ///< Δx (m); 0 when every body comes from a point file
   double horizon = 0;    ///< δ (m) of bodies that do not set their own (each BodySpec holds its resolved δ)
   Vec3 lattice_origin;   ///< lattice points sit at origin + (i + ½)Δx
@@ -237,6 +241,8 @@ struct Problem {
   std::vector<Diagnostic> warnings;  ///< deck problems that do not stop the run (e.g. an unusual horizon)
 
   const MaterialSpec& material_of(const BodySpec& body) const;
+  /// What a point's volume has besides its lattice cell Δx^n: the bar's area A (1D), the thickness h (2D), 1 (3D).
+  double cross_section() const { return dimension == 1 ? area : dimension == 2 ? thickness : 1.0; }
 };
 
 }  // namespace peridot

@@ -84,6 +84,7 @@ void emit_discretization(YAML::Emitter& out, const Problem& p) {
     out << YAML::Key << "plane" << YAML::Value << (p.plane == PlaneKind::stress ? "stress" : "strain");
     out << YAML::Key << "thickness" << YAML::Value << number(p.thickness);
   }
+  if (p.dimension == 1) out << YAML::Key << "area" << YAML::Value << number(p.area);
   out << YAML::Key << "lattice_origin" << YAML::Value;
   emit_point(out, p.lattice_origin);
   out << YAML::Key << "jitter" << YAML::Value << number(p.jitter);
@@ -144,10 +145,12 @@ void emit_materials(YAML::Emitter& out, const Problem& p) {
     out << YAML::Key << m.name << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "model" << YAML::Value << m.model;
     out << YAML::Key << "density" << YAML::Value << number(m.density);
-    out << YAML::Key << "bulk_modulus" << YAML::Value << number(m.elastic.bulk_modulus);
-    out << YAML::Key << "shear_modulus" << YAML::Value << number(m.elastic.shear_modulus);
+    if (p.dimension != 1) {  // a bar is E alone
+      out << YAML::Key << "bulk_modulus" << YAML::Value << number(m.elastic.bulk_modulus);
+      out << YAML::Key << "shear_modulus" << YAML::Value << number(m.elastic.shear_modulus);
+    }
     out << YAML::Key << "youngs_modulus" << YAML::Value << number(m.elastic.youngs_modulus);
-    out << YAML::Key << "poisson_ratio" << YAML::Value << number(m.elastic.poisson_ratio);
+    if (p.dimension != 1) out << YAML::Key << "poisson_ratio" << YAML::Value << number(m.elastic.poisson_ratio);
     out << YAML::Key << "influence" << YAML::Value << std::string(influence_name(m.influence));
     emit_parameters(out, m.parameters);
     if (m.damage.enabled) {
@@ -196,6 +199,10 @@ void emit_list(YAML::Emitter& out, const char* key, const std::vector<Item>& ite
 
 void emit_precracks_and_node_sets(YAML::Emitter& out, const Problem& p) {
   emit_list(out, "precracks", p.precracks, [&](const PrecrackSpec& c) {
+    if (c.is_point) {
+      out << YAML::Key << "at" << YAML::Value << number(c.at);
+      return;
+    }
     if (c.is_segment) {
       out << YAML::Key << "segment" << YAML::Value << YAML::BeginMap << YAML::Key << "from" << YAML::Value;
       emit_point(out, c.a);

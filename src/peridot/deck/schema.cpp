@@ -51,6 +51,7 @@ const std::vector<UnitInfo>& unit_table() {
   static const std::vector<UnitInfo> table = {
       {Unit::none, "dimensionless", {{"-", 1.0}}},
       {Unit::length, "length", {{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"um", 1e-6}, {"µm", 1e-6}, {"nm", 1e-9}}},
+      {Unit::area, "area", {{"m^2", 1.0}, {"cm^2", 1e-4}, {"mm^2", 1e-6}}},
       {Unit::time, "time", {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"µs", 1e-6}, {"ns", 1e-9}}},
       {Unit::pressure, "pressure", {{"Pa", 1.0}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}}},
       {Unit::density, "density", {{"kg/m^3", 1.0}, {"g/cm^3", 1e3}}},
@@ -163,7 +164,7 @@ KeySpec horizon_factor_key(bool required) {
 
 std::vector<KeySpec> component_keys(Unit unit, ValueType type) {
   return {{.key = "x", .type = type, .unit = unit, .description = "x component"},
-          {.key = "y", .type = type, .unit = unit, .description = "y component"},
+          {.key = "y", .type = type, .unit = unit, .description = "y component", .min_dimension = 2},
           {.key = "z", .type = type, .unit = unit, .description = "z component", .dimension = 3}};
 }
 
@@ -200,7 +201,7 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "decomposition", .type = VT::mapping, .description = "how a distributed run (mpirun) splits the points"},
                 {.key = "output", .type = VT::mapping, .description = "Exodus fields, CSV history, progress"}}});
   s.push_back({"discretization", "the point lattice",
-               {{.key = "dimension", .type = VT::integer, .range = {2, 3}, .description = "2 or 3", .required = true},
+               {{.key = "dimension", .type = VT::integer, .range = {1, 3}, .description = "1 (a bar), 2 or 3", .required = true},
                 {.key = "spacing", .unit = Unit::length, .range = positive,
                  .description = "lattice spacing Δx (m); required unless every body uses points_file"},
                 horizon_factor_key(true),
@@ -209,6 +210,8 @@ std::vector<SectionSpec> make_sections() {
                  .choices = {"stress", "strain"}},
                 {.key = "thickness", .unit = Unit::length, .default_yaml = "1", .range = positive,
                  .description = "out-of-plane thickness h (m)", .dimension = 2},
+                {.key = "area", .unit = Unit::area, .default_yaml = "1", .range = positive,
+                 .description = "cross-sectional area A of the bar (m²)", .dimension = 1},
                 {.key = "lattice_origin", .type = VT::point, .default_yaml = "[0, 0, 0]",
                  .description = "lattice points sit at origin + (i + ½)Δx"},
                 {.key = "jitter", .default_yaml = "0", .range = {0, 0.5, false, true},
@@ -262,7 +265,9 @@ std::vector<SectionSpec> make_sections() {
                {{.key = "center", .type = VT::point, .description = "centre (m)", .required = true},
                 {.key = "radius", .unit = Unit::length, .range = positive, .description = "radius (m)", .required = true}}});
   s.push_back({"precracks[i]", "a pre-crack: bonds crossing it are removed",
-               {{.key = "segment", .type = VT::mapping, .description = "2D: a segment", .required = true, .one_of = "crack", .dimension = 2},
+               {{.key = "at", .unit = Unit::length, .description = "1D: the position x on the bar that it cuts (m)",
+                 .required = true, .one_of = "crack", .dimension = 1},
+                {.key = "segment", .type = VT::mapping, .description = "2D: a segment", .required = true, .one_of = "crack", .dimension = 2},
                 {.key = "rectangle", .type = VT::mapping, .description = "3D: a parallelogram", .required = true, .one_of = "crack",
                  .dimension = 3}}});
   s.push_back({"precracks[i].segment", "segment from `from` to `to`",

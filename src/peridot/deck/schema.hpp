@@ -13,7 +13,7 @@ namespace peridot {
 
 /// Physical quantity of a number; each has an SI unit and a few accepted alternatives ("72 GPa").
 enum class Unit {
-  none, length, time, pressure, density, energy_per_area, velocity, force_density, rate, temperature, specific_heat,
+  none, length, area, time, pressure, density, energy_per_area, velocity, force_density, rate, temperature, specific_heat,
   thermal_expansion
 };
 
@@ -56,7 +56,8 @@ struct KeySpec {
   std::string_view description;
   bool required = false;    ///< in a one_of group: one key of the group is required
   std::string_view one_of;  ///< exclusive group: at most one of the keys sharing this name may be given
-  int dimension = 0;        ///< 0 = any; 2 or 3 = allowed only in decks of that dimension
+  int dimension = 0;        ///< 0 = any; 1, 2 or 3 = allowed only in decks of that dimension
+  int min_dimension = 0;    ///< 0 = any; 2 = allowed in 2D and 3D decks only (a y component)
   std::vector<std::string_view> choices;  ///< the accepted values of a ValueType::choice
 };
 

@@ -59,11 +59,11 @@ void fill_shape(const Problem& problem, std::int32_t block, std::vector<RawPoint
     lo[d] = static_cast<long>(std::floor((box.lo[d] - origin[d]) / dx - 0.5)) - 1;
     hi[d] = static_cast<long>(std::ceil((box.hi[d] - origin[d]) / dx - 0.5)) + 1;
   }
-  const double volume = dim == 3 ? dx * dx * dx : dx * dx * problem.thickness;
+  const double volume = std::pow(dx, dim) * problem.cross_section();
   for (long k = lo[2]; k <= hi[2]; ++k)
     for (long j = lo[1]; j <= hi[1]; ++j)
       for (long i = lo[0]; i <= hi[0]; ++i) {
-        Vec3 p{origin.x + (i + 0.5) * dx, origin.y + (j + 0.5) * dx, dim == 3 ? origin.z + (k + 0.5) * dx : 0.0};
+        Vec3 p{origin.x + (i + 0.5) * dx, dim >= 2 ? origin.y + (j + 0.5) * dx : 0.0, dim == 3 ? origin.z + (k + 0.5) * dx : 0.0};
         if (!body.shape->contains(p, dim) || claimed_by_earlier_body(problem, block, p)) continue;
         if (problem.jitter > 0)
           for (int d = 0; d < dim; ++d) p[d] += (2 * uniform01(rng) - 1) * problem.jitter * dx;
@@ -94,12 +94,12 @@ void read_point_file(const Problem& problem, const BodySpec& body, std::int32_t 
     if (values.size() != expected && values.size() != expected + 1) {
       throw InputError(SourcePos{body.points_file, line_number, 1},
                        "bodies." + body.name + ": expected " + std::to_string(expected) + " or " +
-                           std::to_string(expected + 1) + " columns (x y" + (dim == 3 ? " z" : "") +
+                           std::to_string(expected + 1) + " columns (x" + (dim >= 2 ? " y" : "") + (dim == 3 ? " z" : "") +
                            " volume [block]), found " + std::to_string(values.size()));
     }
     if (values.size() == expected + 1 && body.block_filter && static_cast<int>(values[expected]) != *body.block_filter)
       continue;
-    Vec3 p{values[0], values[1], dim == 3 ? values[2] : 0.0};
+    Vec3 p{values[0], dim >= 2 ? values[1] : 0.0, dim == 3 ? values[2] : 0.0};
     double volume = values[dim];
     if (!(volume > 0)) {
       throw InputError(SourcePos{body.points_file, line_number, 1},
@@ -132,7 +132,8 @@ Discretization discretize(const Problem& problem) {
   double min_spacing = 1e300;
   for (const RawPoint& p : raw) {
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], p.x[d]);
-    double side = problem.dimension == 3 ? std::cbrt(p.volume) : std::sqrt(p.volume / problem.thickness);
+    const double cell = p.volume / problem.cross_section();
+    double side = problem.dimension == 3 ? std::cbrt(cell) : problem.dimension == 2 ? std::sqrt(cell) : cell;
     min_spacing = std::min(min_spacing, side);
   }
   for (RawPoint& p : raw) {

@@ -31,6 +31,7 @@ double influence_moment(InfluenceKind kind, double horizon, int p) {
 double bond_based_micromodulus(const ElasticConstants& c, double horizon, InfluenceKind influence,
                                const Problem& problem) {
   if (problem.dimension == 3) return 9 * c.bulk_modulus / (2 * std::numbers::pi * influence_moment(influence, horizon, 3));
+  if (problem.dimension == 1) return c.youngs_modulus / (problem.area * influence_moment(influence, horizon, 1));
   return 4 * planar_bulk_modulus(c, problem.plane) /
          (std::numbers::pi * problem.thickness * influence_moment(influence, horizon, 2));
 }
@@ -38,12 +39,15 @@ double bond_based_micromodulus(const ElasticConstants& c, double horizon, Influe
 // The work to break every bond crossing a unit crack area, with the bond-based micromodulus c0 of the
 // material's K and influence function (for LPS too, as is usual):
 // 3D: G0 = (π c0 s0²/2) ∫₀^δ ω ξ⁴ dξ  (ω = 1: s0 = √(5G0/(9Kδ)));
-// 2D: G0 = h c0 s0² ∫₀^δ ω ξ³ dξ      (ω = 1: s0 = √(πG0/(3K′δ))).
+// 2D: G0 = h c0 s0² ∫₀^δ ω ξ³ dξ      (ω = 1: s0 = √(πG0/(3K′δ)));
+// 1D: G0 = (A c0 s0²/2) ∫₀^δ ω ξ² dξ  (ω = 1: s0 = √(3G0/(Eδ))).
 double critical_stretch_from_energy(double fracture_energy, const MaterialSpec& spec, double horizon,
                                     const Problem& problem) {
   const double c0 = bond_based_micromodulus(spec.elastic, horizon, spec.influence, problem);
   if (problem.dimension == 3)
     return std::sqrt(2 * fracture_energy / (std::numbers::pi * c0 * influence_moment(spec.influence, horizon, 4)));
+  if (problem.dimension == 1)
+    return std::sqrt(2 * fracture_energy / (problem.area * c0 * influence_moment(spec.influence, horizon, 2)));
   return std::sqrt(fracture_energy / (problem.thickness * c0 * influence_moment(spec.influence, horizon, 3)));
 }
 

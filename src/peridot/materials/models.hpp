@@ -84,9 +84,12 @@ const typename Model::Params& params_of(const ModelParams& params) {
   return std::get<MaterialModels::index_of<Model>()>(params);
 }
 
+/// Runs f(std::integral_constant<int, Dim>) for the deck's dimension. A 1D deck's points lie on the x axis
+/// (y = z = 0), where the 2D loops are exact: it runs them, and what depends on the dimension beyond the
+/// bond geometry (a calibration) reads the deck's dimension itself.
 template <class F>
 decltype(auto) with_dimension(int dimension, F&& f) {
-  if (dimension == 2) return std::forward<F>(f)(std::integral_constant<int, 2>{});
+  if (dimension <= 2) return std::forward<F>(f)(std::integral_constant<int, 2>{});
   return std::forward<F>(f)(std::integral_constant<int, 3>{});
 }
 

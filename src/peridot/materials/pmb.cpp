@@ -27,6 +27,8 @@ V the neighbour volume, ω(ξ) the influence function (1, δ/ξ or exp(−ξ²/�
 - (4) 3D calibration, W = 9Ks²/2 for an isotropic stretch s: c0 = 9K / (2π ∫₀^δ ω ξ³ dξ), which is 18K/(πδ⁴) for ω = 1
 - (5) 2D calibration, thickness h, W = 2K′s²: c0 = 4K′ / (πh ∫₀^δ ω ξ² dξ), which is 12K′/(πhδ³) for ω = 1,
   with K′ = K + G/3 in plane strain and 9KG/(3K + 4G) = E/(2(1 − ν)) in plane stress
+- (6) 1D calibration, a bar of area A, W = Eε²/2 for a uniform strain ε: c0 = E / (A ∫₀^δ ω ξ dξ), which is
+  2E/(Aδ²) for ω = 1
 
 The integrals ∫₀^δ ω ξ^p dξ are evaluated in closed form for each influence function.)",
     .restrictions = R"(- Bond-based: ν is fixed to 1/4 in 3D and plane strain and to 1/3 in plane stress. poisson_ratio may be
@@ -36,7 +38,8 @@ The integrals ∫₀^δ ω ξ^p dξ are evaluated in closed form for each influe
   more softly (a 3D block of 9³ points stores 32 % less than the classical energy of a uniaxial strain).
   `surface_correction: true` scales each pair's micromodulus by the energy method's factor G (docs/algorithms.md
   §15; c0 ω G): the block's energy is then within 0.7 %.
-- 2D decks use the forms (5) for the thickness h and the plane (stress or strain) of the discretization.)",
+- 2D decks use the forms (5) for the thickness h and the plane (stress or strain) of the discretization; 1D
+  decks the form (6) for the bar's area A, with Young's modulus alone (no ν).)",
     .further_references = {},
     .example = R"(materials:
   glass:
@@ -50,7 +53,8 @@ The integrals ∫₀^δ ω ξ^p dξ are evaluated in closed form for each influe
           .reference = "Silling & Askari, Comput. Struct. 83 (2005) 1526-1535",
           .bond_based = true,
           .keys = {thermal_expansion_key(), surface_correction_key()},
-          .doc = doc};
+          .doc = doc,
+          .one_dimensional = true};
 }
 
 }  // namespace peridot

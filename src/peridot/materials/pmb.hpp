@@ -4,7 +4,8 @@
 //   pair force f = c s (y′ − y)/|y′ − y|, s = (|Y| − |ξ|)/|ξ|, T⟨ξ⟩ = ½ f, pair energy w = ½ c s² |ξ|.
 // With an influence function the micromodulus is c(ξ) = c0 ω(ξ), c0 calibrated so that an isotropic
 // strain gives the classical energy density (3D: W = 9Ks²/2 → c0 = 9K / (2π ∫₀^δ ω ξ³ dξ), which is
-// 18K/(πδ⁴) for ω = 1; 2D, thickness h: W = 2K′s² → c0 = 4K′ / (πh ∫₀^δ ω ξ² dξ), 12K′/(πhδ³) for ω = 1).
+// 18K/(πδ⁴) for ω = 1; 2D, thickness h: W = 2K′s² → c0 = 4K′ / (πh ∫₀^δ ω ξ² dξ), 12K′/(πhδ³) for ω = 1;
+// 1D, a bar of area A: W = Eε²/2 → c0 = E / (A ∫₀^δ ω ξ dξ), 2E/(Aδ²) for ω = 1).
 // Bond-based models force ν = 1/4 (3D, plane strain) or 1/3 (plane stress).
 #include <cstdint>
 #include <string_view>

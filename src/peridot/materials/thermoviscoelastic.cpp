@@ -41,7 +41,8 @@ LatticeShears lattice_shears(const double n[3]) {
 /// |β| at most: the weights 1 + β c stay positive (|c| ≤ 1).
 constexpr double max_anisotropy_weight = 0.5;
 
-/// The Madenci–Oterkus constants of (M1) for a shear modulus μ: b(μ) and a_μ(μ) are linear in μ.
+/// The Madenci–Oterkus constants of (M1) for a shear modulus μ (in 1D Young's modulus E): b(μ) and a_μ(μ) are
+/// linear in μ.
 struct Calibration {
   double a_kappa = 0;         ///< a_κ
   double a_mu_per_mu = 0;     ///< a_μ / μ
@@ -56,6 +57,8 @@ Calibration calibration(const ElasticConstants& elastic, double mu_glassy, doubl
   constexpr double pi = std::numbers::pi;
   if (problem.dimension == 3)
     return {elastic.bulk_modulus / 2, 5.0 / 6.0, 15 / (2 * pi * std::pow(delta, 5)), 9 / (4 * pi * std::pow(delta, 4))};
+  if (problem.dimension == 1)  // the paper's eq 7c: a bar of area A, W = b δ Σ |ξ| s² V = Eε²/2
+    return {0, 0, 1 / (2 * std::pow(delta, 3) * problem.area), 1 / (2 * delta * delta * problem.area)};
   const double h = problem.thickness;
   ElasticConstants glassy = elastic;
   glassy.shear_modulus = mu_glassy;
@@ -71,14 +74,17 @@ Thermoviscoelastic::Params Thermoviscoelastic::resolve(const MaterialSpec& spec,
   // The constants of (M1) hold for Ω = δ/|ξ| only (the paper's eq 6): ModelInfo::influence.
   PERIDOT_REQUIRE(block.influence == InfluenceKind::inverse_distance, "thermoviscoelastic: the deck sets Ω = δ/|ξ|");
   const double delta = block.horizon;
-  const double mu_relaxed = spec.elastic.shear_modulus;
+  // In 1D the relaxing modulus is Young's: a bar has neither shear nor bulk response of its own.
+  const bool bar = problem.dimension == 1;
+  const std::string modulus = bar ? "youngs_modulus" : "shear_modulus";
+  const double mu_relaxed = bar ? spec.elastic.youngs_modulus : spec.elastic.shear_modulus;
   Params p;
   double mu_glassy = mu_relaxed;
-  for (int k = 0;; ++k) {  // μ_k into bond_modulus until the calibration below makes them b_k
+  for (int k = 0;; ++k) {  // μ_k (E_k) into bond_modulus until the calibration below makes them b_k
     const std::string item = fmt::format("prony_series[{}].", k);
-    if (!spec.parameters.has(item + "shear_modulus")) break;
+    if (!spec.parameters.has(item + modulus)) break;
     PERIDOT_REQUIRE(k < max_terms, "the deck check limits the Prony series to max_terms");
-    p.bond_modulus[k] = spec.parameters.number(item + "shear_modulus");
+    p.bond_modulus[k] = spec.parameters.number(item + modulus);
     p.relaxation_time[k] = spec.parameters.number(item + "relaxation_time");
     mu_glassy += p.bond_modulus[k];
     p.terms = k + 1;
@@ -107,6 +113,7 @@ Thermoviscoelastic::Params Thermoviscoelastic::resolve(const MaterialSpec& spec,
   ElasticConstants glassy = spec.elastic;
   glassy.bulk_modulus = spec.elastic.bulk_modulus + 4 * mu_glassy / 3;
   glassy.shear_modulus = mu_glassy;
+  if (bar) glassy.youngs_modulus = mu_glassy;
   block.stable_micromodulus = bond_based_micromodulus(glassy, delta, InfluenceKind::constant, problem);
   return p;
 }
@@ -173,7 +180,11 @@ void Thermoviscoelastic::calibrate(ModelContext& ctx, const MaterialParams&, con
         }
       }
       double d = p.dilatation_constant, g = 1, r = p.shear_ratio, beta = 0;
-      if (p.surface_correction && volume > 0 && shear_moment[0] > 0) {
+      if (n == 1 && p.surface_correction && volume > 0) {
+        // A bar: θ = ε and W = b δ Σ |ξ| ε² V = Eε²/2 under a uniform strain ε (no distortional split, r = 0).
+        d = 1 / (delta * volume);
+        g = 1 / (2 * delta * length_moment[0]) / b_full;
+      } else if (p.surface_correction && volume > 0 && shear_moment[0] > 0) {
         // Both shears store the same energy: Σ (1 + β c) ξ (s_xy² − s_xx_yy²) V = 0.
         const double difference = shear_xy[1] - shear_xx_yy[1];
         if (std::abs(difference) > 1e-6 * shear_xy[0]) beta = (shear_xx_yy[0] - shear_xy[0]) / difference;
@@ -338,7 +349,9 @@ namespace {
 
 void check(const MapReader& material, const Parameters& parameters, DeckContext& ctx) {
   int terms = 0;
-  while (parameters.has(fmt::format("prony_series[{}].shear_modulus", terms))) ++terms;
+  while (parameters.has(fmt::format("prony_series[{}].shear_modulus", terms)) ||
+         parameters.has(fmt::format("prony_series[{}].youngs_modulus", terms)))
+    ++terms;
   if (terms > Thermoviscoelastic::max_terms)
     ctx.error(material["prony_series"].pos, material.path_of("prony_series"),
               fmt::format("{} Prony terms given; at most {} are supported", terms, Thermoviscoelastic::max_terms));
@@ -364,6 +377,9 @@ evolution equation over a step (unconditionally stable), or by the paper's secon
   3D: a_κ = κ/2, a_μ = 5μ/6, b = 15μ/(2πδ⁵), d = 9/(4πδ⁴); 2D (thickness h): a_κ = κ/2, a_μ = μ,
   b = 6μ/(πhδ⁴), d = 2/(πhδ³), κ the in-plane bulk modulus (plane stress E/(2(1 − ν))). An isotropic strain
   ε gives θ = 3ε (2ε) and W = 9κε²/2 (2κε²), a simple shear ε_xy gives W = 2μ ε_xy², as the classical solid.
+  1D (a bar of area A, the paper's eq 7c): a_κ = a_μ = 0, b = E/(2δ³A), d = 1/(2δ²A): W = b δ Σ |ξ| s² V = Eε²/2
+  under a uniform strain ε. The bar has no shear: what relaxes is Young's modulus, E(t) = E∞ + Σ E_k exp(−t/τ_k),
+  and everything below holds with E for μ and r = 0.
 - (M2) t = (2δ/|ξ|)[d(a_κ − a_μ∞)θ + b∞ e + Σ_k b_k((e − e^v_k) − r d θ(e − e^v_k))], r = a_μ/b,
   θ(x) = d δ Σ (x/|ξ|) V, b_k and b∞ the b of μ_k and μ∞
 - (M3) ė^v_k = (e − e^v_k)/τ_k; exactly for e linear over the step, ε_k = exp(−Δt/τ_k),
@@ -376,7 +392,7 @@ evolution equation over a step (unconditionally stable), or by the paper's secon
 The paper's viscous stretch γ_k is the distortional stretch of e^v_k, e^v_k/|ξ| − r d θ(e^v_k)/|ξ|; (M3)
 mapped through it is the paper's eq 23 (or 24b), so this is the paper's model with a history that is local
 to each bond.)",
-    .restrictions = R"(- 2D and 3D; the paper's 1D form (bars of area A) is not available.
+    .restrictions = R"(- 1D (a bar: the deck's youngs_modulus is E∞, the Prony terms give youngs_modulus E_k), 2D and 3D.
 - The influence function is δ/|ξ| whatever the deck says (another value given is an error).
 - The surface correction is per point (isotropic strain, the simple shears, and a weight 1 + β c(n) per bond
   that gives the shears ε_xy and ε_xx = −ε_yy the same energy on the lattice: docs/algorithms.md §13). It makes
@@ -395,8 +411,9 @@ to each bond.)",
 - At most 20 Prony terms. Memory per bond: (terms + 3) × 8 bytes of history and 4 bytes of partner-bond index;
   three point fields exchanged after each step's start.
 - The second-order update is stable only for Δt < 2 a_T τ_k of every term.
-- Damage, when given, uses the mechanical stretch; θ is not recomputed for the bonds that break. The
-  energy-based bond failure of the paper (micropotential reaching G_c/N_c) is not implemented yet.)",
+- Damage, when given, uses the mechanical stretch; θ is not recomputed for the bonds that break. The paper's
+  energy-based bond failure (the work on a bond reaching G_c/N_c) is `damage: {fracture_energy: Gc, criterion:
+  energy}` (docs/algorithms.md §14).)",
     .further_references = {"Madenci & Oterkus, Peridynamic Theory and Its Applications, Springer (2014)",
                            "Williams, Landel & Ferry, J. Am. Chem. Soc. 77 (1955) 3701-3707"},
     .example = R"(materials:
@@ -430,7 +447,9 @@ to each bond.)",
                    thermal_expansion_key()},
           .sections = {{"materials.<name>.prony_series[i]", "one relaxing shear term",
                         {{.key = "shear_modulus", .unit = Unit::pressure, .range = positive,
-                          .description = "μ_k (Pa)", .required = true},
+                          .description = "μ_k (Pa)", .required = true, .one_of = "modulus", .min_dimension = 2},
+                         {.key = "youngs_modulus", .unit = Unit::pressure, .range = positive,
+                          .description = "E_k (Pa) of a bar", .required = true, .one_of = "modulus", .dimension = 1},
                          {.key = "relaxation_time", .unit = Unit::time, .range = positive,
                           .description = "τ_k (s) at the WLF reference temperature", .required = true}}},
                        {"materials.<name>.wlf", "Williams–Landel–Ferry shift a_T of every relaxation time",
@@ -439,6 +458,7 @@ to each bond.)",
                          {.key = "reference_temperature", .unit = Unit::temperature, .range = positive,
                           .description = "T0 (K), where a_T = 1", .required = true}}}},
           .doc = doc,
+          .one_dimensional = true,
           .influence = "inverse_distance",
           .check = check};
 }

@@ -5,7 +5,8 @@
 // loops), and per point
 //   (M1) θ = d δ Σ s V,  W = (a_κ − a_μ) θ² + b δ Σ |ξ| s² V,  t = (2δ/|ξ|) [d (a_κ − a_μ) θ + b e]   (eqs 4–8)
 // with 3D: a_κ = κ/2, a_μ = 5μ/6, b = 15μ/(2πδ⁵), d = 9/(4πδ⁴); 2D (thickness h): a_κ = κ/2, a_μ = μ,
-// b = 6μ/(πhδ⁴), d = 2/(πhδ³), κ the in-plane bulk modulus of K and the glassy μ0 (docs/algorithms.md §13 checks
+// b = 6μ/(πhδ⁴), d = 2/(πhδ³), κ the in-plane bulk modulus of K and the glassy μ0; 1D (a bar of area A): a_κ = a_μ
+// = 0, b = E/(2δ³A), d = 1/(2δ²A), Young's modulus E relaxing in place of μ (docs/algorithms.md §13 checks
 // the calibration; the paper's eq 7b prints a_κ = κ, a_μ = 2μ, twice these, which does not reproduce κ under
 // isotropic strain). With surface_correction (the default) d, the scale g of b and r = a_μ/b are each point's own
 // (calibrate): exact θ and energy of its family under isotropic strain and simple shear.

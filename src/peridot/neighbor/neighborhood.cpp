@@ -74,6 +74,7 @@ CellGrid bin_points(const Discretization& disc, double cell_size) {
 }  // namespace
 
 bool bond_crosses(const PrecrackSpec& crack, Vec3 p, Vec3 q, int dimension) {
+  if (crack.is_point) return dimension == 1 && (p.x - crack.at) * (q.x - crack.at) < 0;
   if (crack.is_segment) return dimension == 2 && segments_cross(p, q, crack.a, crack.b);
   return dimension == 3 && crosses_rectangle(p, q, crack);
 }

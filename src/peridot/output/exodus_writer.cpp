@@ -73,8 +73,9 @@ const std::vector<std::string>& ExodusWriter::optional_fields() {
   return names;
 }
 
-double ExodusWriter::equivalent_radius(double volume, int dimension, double thickness) {
-  if (dimension == 2) return std::sqrt(volume / (std::numbers::pi * thickness));
+double ExodusWriter::equivalent_radius(double volume, int dimension, double cross_section) {
+  if (dimension == 1) return 0.5 * volume / cross_section;
+  if (dimension == 2) return std::sqrt(volume / (std::numbers::pi * cross_section));
   return std::cbrt(3.0 * volume / (4.0 * std::numbers::pi));
 }
 
@@ -84,10 +85,10 @@ void ExodusWriter::check(int status, const char* what) const {
 
 ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
                            const std::vector<NodeSetOutput>& node_sets, const std::string& title,
-                           double thickness, const std::vector<std::string>& extra_fields)
+                           double cross_section, const std::vector<std::string>& extra_fields)
     : path_(path), dimension_(disc.dimension), num_points_(disc.num_points()) {
   const std::size_t n = num_points_;
-  PERIDOT_REQUIRE(dimension_ == 2 || dimension_ == 3, "Exodus output needs dimension 2 or 3");
+  PERIDOT_REQUIRE(dimension_ >= 1 && dimension_ <= 3, "Exodus output needs dimension 1, 2 or 3");
   PERIDOT_REQUIRE(n > 0, "Exodus output of an empty discretization");
   // The default (32-bit integer) Exodus API numbers nodes with int.
   PERIDOT_REQUIRE(n < static_cast<std::size_t>(std::numeric_limits<int>::max()),
@@ -96,7 +97,7 @@ ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
   PERIDOT_REQUIRE(disc.block.empty() || disc.block.size() == n, "disc.block and disc.volume differ in size");
   PERIDOT_REQUIRE(disc.input_id.empty() || disc.input_id.size() == n,
                   "disc.input_id and disc.volume differ in size");
-  PERIDOT_REQUIRE(dimension_ == 3 || thickness > 0, "2D Exodus output needs a positive thickness");
+  PERIDOT_REQUIRE(dimension_ == 3 || cross_section > 0, "1D and 2D Exodus output need a positive cross-section");
   for (const auto& set : node_sets)
     for (std::uint32_t p : set.points)
       PERIDOT_REQUIRE(p < n, "node set '" + set.name + "' names point " + std::to_string(p) + " of " +
@@ -194,7 +195,7 @@ ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
         c[d].resize(n);
         for (std::size_t i = 0; i < n; ++i) c[d][i] = disc.x(i, d);
       }
-      check(ex_put_coord(exoid_, c[0].data(), c[1].data(), dimension_ == 3 ? c[2].data() : nullptr),
+      check(ex_put_coord(exoid_, c[0].data(), dimension_ >= 2 ? c[1].data() : nullptr, dimension_ == 3 ? c[2].data() : nullptr),
             "ex_put_coord");
       std::vector<std::string> coord_names{"x", "y", "z"};
       coord_names.resize(dimension_);
@@ -215,7 +216,7 @@ ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
       for (std::size_t e = 0; e < count; ++e) {
         const std::uint32_t p = element_points_[first + e];
         conn[e] = static_cast<int>(p) + 1;
-        radius[e] = equivalent_radius(disc.volume[p], dimension_, thickness);
+        radius[e] = equivalent_radius(disc.volume[p], dimension_, cross_section);
       }
       check(ex_put_conn(exoid_, EX_ELEM_BLOCK, id, conn.data(), nullptr, nullptr), "ex_put_conn");
       check(ex_put_attr(exoid_, EX_ELEM_BLOCK, id, radius.data()), "ex_put_attr");

@@ -45,11 +45,12 @@ struct NodeSetOutput {
 
 class ExodusWriter {
  public:
-  /// Creates (clobbers) the file and writes the mesh. thickness is used in 2D only, for the sphere radius.
+  /// Creates (clobbers) the file and writes the mesh. cross_section (the thickness in 2D, the bar's area in
+  /// 1D) is used for the sphere radius only.
   /// Throws std::runtime_error naming the path and the Exodus/netCDF message on any failure of the library,
   /// std::logic_error on inconsistent input (a node set naming a point that does not exist, …).
   ExodusWriter(const std::string& path, const Discretization& disc, const std::vector<NodeSetOutput>& node_sets,
-               const std::string& title, double thickness = 1.0, const std::vector<std::string>& extra_fields = {});
+               const std::string& title, double cross_section = 1.0, const std::vector<std::string>& extra_fields = {});
   ExodusWriter(const ExodusWriter&) = delete;
   ExodusWriter& operator=(const ExodusWriter&) = delete;
   ExodusWriter(ExodusWriter&& other) noexcept;
@@ -76,9 +77,9 @@ class ExodusWriter {
   static const std::vector<std::string>& optional_fields();
 
   /// Radius of the sphere drawn for a point of volume V: the sphere of volume V in 3D, (3V/4π)^(1/3); in 2D
-  /// the disc of area V/thickness, sqrt(V/(π·thickness)). Either way neighbouring spheres of a lattice of
-  /// spacing h just about touch (r ≈ 0.62h in 3D, 0.56h in 2D).
-  static double equivalent_radius(double volume, int dimension, double thickness);
+  /// the disc of area V/thickness, sqrt(V/(π·thickness)); in 1D half the segment V/area. Either way
+  /// neighbouring spheres of a lattice of spacing h just about touch (r ≈ 0.62h in 3D, 0.56h in 2D, 0.5h in 1D).
+  static double equivalent_radius(double volume, int dimension, double cross_section);
 
  private:
   void check(int status, const char* what) const;  // throws on status < 0

@@ -57,7 +57,9 @@ std::string describe_setup(const Simulation& sim) {
   const double bonds = static_cast<double>(sim.global_bond_count());
   const std::vector<BlockRange> ranges = block_ranges(disc);
   out << fmt::format("dimension        {}{}\n", disc.dimension,
-                     disc.dimension == 2 ? (problem.plane == PlaneKind::stress ? " (plane stress)" : " (plane strain)") : "");
+                     disc.dimension == 2   ? (problem.plane == PlaneKind::stress ? " (plane stress)" : " (plane strain)")
+                     : disc.dimension == 1 ? fmt::format(" (a bar of area {:g} m²)", problem.area)
+                                           : std::string());
   out << fmt::format("points           {}\n", disc.num_points());
   for (std::size_t b = 0; b < disc.block_names.size(); ++b) {
     const BlockRange r = ranges[b];
@@ -251,7 +253,7 @@ void run_problem(const Problem& problem, const RunOptions& options) {
       std::vector<NodeSetOutput> sets;
       for (const NodeSet& set : sim.output_node_sets()) sets.push_back({set.name, set.points});
       exodus = std::make_unique<ExodusWriter>((dir / output.exodus_file).string(), sim.output_discretization(), sets,
-                                              "peridot: " + problem.deck_path, problem.thickness,
+                                              "peridot: " + problem.deck_path, problem.cross_section(),
                                               optional_exodus_fields(sim));
     }
     if (output.history_every > 0) history = std::make_unique<History>(dir / output.history_file, sim);

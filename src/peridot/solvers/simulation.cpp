@@ -101,7 +101,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   any_start_step_ = model_.any_start_step();
   any_damage_ = model_.any_damage();
   if (std::any_of(model_.params.begin(), model_.params.end(), [](const MaterialParams& p) { return p.fracture_energy > 0; }))
-    energy_failure_ = std::make_unique<EnergyFailure>(model_, problem_.spacing, problem_.thickness);
+    energy_failure_ = std::make_unique<EnergyFailure>(model_, problem_.spacing, problem_.cross_section());
   history_arrays_ = model_.bond_history_arrays();
   partner_arrays_ = model_.partner_point_arrays();
   released_arrays_ = model_.released_extension_arrays();

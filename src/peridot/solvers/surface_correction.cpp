@@ -12,7 +12,9 @@ namespace peridot {
 double uniaxial_strain_energy(const MaterialParams& p, const Problem& problem, double strain) {
   const bool bond_based = with_model(p.model, [](auto model) { return decltype(model)::info().bond_based; });
   double modulus = 0;
-  if (p.dimension == 3) {
+  if (p.dimension == 1) {
+    modulus = p.elastic.youngs_modulus;  // a bar
+  } else if (p.dimension == 3) {
     const double K = p.elastic.bulk_modulus;
     modulus = bond_based ? 1.8 * K : K + 4 * p.elastic.shear_modulus / 3;  // ν = 1/4: G = 3K/5
   } else {
