@@ -609,6 +609,13 @@ TEST(Deck, OneDimensionalBar) {
   expect_error(area_in_2d, position_of(area_in_2d, "area"), "'area' applies to 1D decks only");
 }
 
+// creep_substeps follow a load jump; only load_history: steps has one.
+TEST(Deck, CreepSubstepsNeedSteppedLoads) {
+  std::string substeps = replaced(deck_1d, "end_time: 2 ms}", "end_time: 2 ms, creep_substeps: 4}");
+  expect_error(substeps, position_of(substeps, "4}"), "solver.creep_substeps: creep substeps follow a load jump");
+  EXPECT_NO_THROW(parse(replaced(deck_1d, "end_time: 2 ms}", "end_time: 2 ms, creep_substeps: 4, load_history: steps}")));
+}
+
 TEST(Deck, ExclusivePairsNeedExactlyOne) {
   std::string both = replaced(deck_2d, "horizon_factor: 3.015", "horizon_factor: 3.015\n  horizon: 1.5 mm");
   expect_error(both, position_of(both, "horizon:"), "discretization: give only one of 'horizon_factor' and 'horizon'");

@@ -211,6 +211,75 @@ TEST(DynamicRelaxation, IterationLimitNamesTheResidualReached) {
   }
 }
 
+// A bar cut in two (a 1D precrack) and pulled at its free piece: no equilibrium exists, and the error says why
+// (the piece, its load, where it is) instead of only that the residual did not fall.
+TEST(DynamicRelaxation, IterationLimitNamesAPieceThatCameApart) {
+  const std::string deck = R"yaml(
+discretization: {dimension: 1, area: 1 mm^2, spacing: 1 mm, horizon_factor: 3}
+materials:
+  steel: {model: pmb, density: 7800, youngs_modulus: 200 GPa}
+bodies:
+  bar: {material: steel, shape: {box: {min: [0], max: [0.04]}}}
+precracks:
+  - at: 0.0301
+node_sets:
+  held: {shape: {box: {min: [-1], max: [0.001]}}}
+  pulled: {shape: {box: {min: [0.039], max: [1]}}}
+boundary_conditions:
+  - {node_set: held, displacement: {x: "0"}}
+tractions:
+  - {node_set: pulled, x: "1e6"}
+solver: {type: relaxation, max_iterations: 200}
+output: {progress: false}
+)yaml";
+  Simulation sim(parse_deck(deck, "deck.yaml", "."));
+  sim.initialize();
+  try {
+    sim.step();
+    FAIL() << "the cut bar found an equilibrium";
+  } catch (const NumericalError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("did not converge in load step 1"), std::string::npos) << message;
+    EXPECT_NE(message.find("the body has come apart: 1 fragment without support carries a net load, the largest 1 N on "
+                           "10 points (fragment of point 30 at (0.0305, 0, 0) m)"),
+              std::string::npos)
+        << message;
+  }
+}
+
+// Pulled past its strength, the bar breaks at the first equilibrium: the check after breaking reports the loose
+// piece at once, without relaxing towards an equilibrium that does not exist.
+TEST(DynamicRelaxation, BreakingThatCutsALoadedPieceLooseStopsAtOnce) {
+  const std::string deck = R"yaml(
+discretization: {dimension: 1, area: 1 mm^2, spacing: 1 mm, horizon_factor: 3}
+materials:
+  steel: {model: pmb, density: 7800, youngs_modulus: 200 GPa, damage: {critical_stretch: 1e-3}}
+bodies:
+  bar: {material: steel, shape: {box: {min: [0], max: [0.04]}}}
+node_sets:
+  held: {shape: {box: {min: [-1], max: [0.001]}}}
+  pulled: {shape: {box: {min: [0.039], max: [1]}}}
+no_fail: [held]
+boundary_conditions:
+  - {node_set: held, displacement: {x: "0"}}
+tractions:
+  - {node_set: pulled, x: "400e6"}
+solver: {type: relaxation}
+output: {progress: false}
+)yaml";
+  Simulation sim(parse_deck(deck, "deck.yaml", "."));
+  sim.initialize();
+  try {
+    sim.step();
+    FAIL() << "the broken bar found an equilibrium";
+  } catch (const NumericalError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("dynamic relaxation, load step 1 (time 1 s): "), std::string::npos) << message;
+    EXPECT_NE(message.find("bonds broke and the body has come apart"), std::string::npos) << message;
+    EXPECT_NE(message.find("the largest 400 N"), std::string::npos) << message;
+  }
+}
+
 /// Broken bonds (directed) of a run.
 std::size_t broken_bonds(const Simulation& sim) {
   const auto& broken = sim.bonds().broken;

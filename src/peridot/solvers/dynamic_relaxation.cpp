@@ -1,8 +1,10 @@
 #include "peridot/solvers/dynamic_relaxation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -37,6 +39,11 @@ SolverInfo DynamicRelaxation::info() {
                                    "no time passing, and each step first creeps over Δt under the previous loads, then "
                                    "takes its own with no time passing",
                     .choices = {"continuous", "steps"}},
+                   {.key = "creep_substeps", .type = ValueType::integer, .default_yaml = "1", .range = at_least_one,
+                    .description = "load_history: steps only: the creep over the step after a load jump is solved in "
+                                   "this many equilibria, each twice as long as the one before (the first Δt/(2ⁿ − 1)), "
+                                   "so that a relaxation time far below Δt is followed after the jump; the other steps "
+                                   "are solved whole, and each load step still gives one output"},
                    {.key = "breaking", .type = ValueType::choice, .default_yaml = "until_stable",
                     .description = "until_stable: after each equilibrium the bonds over their threshold break and the "
                                    "step is relaxed again until none breaks (the quasi-static answer); once_per_step: "
@@ -66,6 +73,11 @@ TimeIntegrator::Schedule DynamicRelaxation::schedule(const SolverSpec& solver, d
 }
 
 void DynamicRelaxation::check(const Problem& p, DeckContext& ctx) {
+  if (const Parameters::Entry* substeps = p.solver.parameters.find("creep_substeps");
+      substeps && substeps->number > 1 && p.solver.parameters.text("load_history") != "steps")
+    ctx.error(substeps->pos, "solver.creep_substeps",
+              "creep substeps follow a load jump, which only load_history: steps has; remove creep_substeps or "
+              "give load_history: steps");
   for (const InitialConditionSpec& ic : p.initial_conditions)
     if (ic.kind == InitialConditionSpec::Kind::velocity)
       ctx.error(ic.pos, "initial_conditions",
@@ -94,7 +106,8 @@ DynamicRelaxation::DynamicRelaxation(Simulation& sim)
       max_iterations_(sim.problem().solver.parameters.integer("max_iterations")),
       density_factor_(sim.problem().solver.parameters.number("density_factor")),
       stepped_loads_(sim.problem().solver.parameters.text("load_history") == "steps"),
-      break_once_per_step_(sim.problem().solver.parameters.text("breaking") == "once_per_step") {
+      break_once_per_step_(sim.problem().solver.parameters.text("breaking") == "once_per_step"),
+      creep_substeps_(static_cast<int>(sim.problem().solver.parameters.integer("creep_substeps"))) {
   std::vector<double> k;
   stiffness_bound(sim_.model(), k);
   const double factor = density_factor_;
@@ -120,6 +133,93 @@ void DynamicRelaxation::set_loads(double t, double factor) {
   }
 }
 
+bool DynamicRelaxation::set_loads_and_compare(double t, double factor) {
+  State& state = sim_.state();
+  const VectorField u_before = state.u, body_before = state.body_force;
+  set_loads(t, factor);
+  const auto& kind = sim_.loads().dof_kinds();
+  bool changed = false;
+  for (std::size_t k = 0; k < 3 * sim_.num_owned() && !changed; ++k)
+    changed = (kind[k] != DofKind::free && state.u.data()[k] != u_before.data()[k]) ||
+              (sim_.loads().has_body_force() && state.body_force.data()[k] != body_before.data()[k]);
+  return sim_.communicator().any(changed);
+}
+
+void DynamicRelaxation::creep(double t, double dt) {
+  if (!loads_jumped_ || creep_substeps_ == 1) {
+    solve_and_commit(dt);
+    return;
+  }
+  State& state = sim_.state();
+  const double start = t - dt, first = dt / (std::ldexp(1.0, creep_substeps_) - 1);
+  double elapsed = 0;
+  for (int s = 0; s < creep_substeps_; ++s) {
+    const double h = s + 1 == creep_substeps_ ? dt - elapsed : std::ldexp(first, s);
+    elapsed += h;
+    state.time = s + 1 == creep_substeps_ ? t : start + elapsed;  // temperatures are those of the substep's end
+    solve_and_commit(h);
+  }
+}
+
+std::string DynamicRelaxation::unsupported_fragment() {
+  sim_.relabel_fragments();
+  const State& state = sim_.state();
+  const Discretization& disc = sim_.discretization();
+  const auto& kind = sim_.loads().dof_kinds();
+  // Per fragment of this rank's points: label, points, supported along x, y, z (a prescribed dof, or a wall
+  // pressing), the net body force along x, y, z, and where the point that names it is (when it is here).
+  constexpr std::size_t fields = 12;
+  std::map<double, std::array<double, fields>> local;
+  for (std::size_t i = 0; i < sim_.num_owned(); ++i) {
+    const double label = state.fragment[i];
+    auto [at, added] = local.try_emplace(label, std::array<double, fields>{});
+    std::array<double, fields>& r = at->second;
+    if (added) r[0] = label, r[8] = 0;
+    r[1] += 1;
+    for (int d = 0; d < 3; ++d) {
+      const std::size_t k = 3 * i + static_cast<std::size_t>(d);
+      const bool wall = sim_.has_walls() && sim_.wall_force().data()[k] != 0;
+      if (kind[k] != DofKind::free || wall) r[2 + d] = 1;
+      if (sim_.loads().has_body_force()) r[5 + d] += state.body_force.data()[k] * disc.volume[i];
+    }
+    if (static_cast<double>(disc.input_id.empty() ? i : disc.input_id[i]) == label) {
+      const Vec3 x = disc.x.get(i);
+      r[8] = 1, r[9] = x.x, r[10] = x.y, r[11] = x.z;
+    }
+  }
+  std::vector<double> flat;
+  for (const auto& [label, r] : local) flat.insert(flat.end(), r.begin(), r.end());
+  const std::vector<double> all = sim_.communicator().all_gather(flat);
+  std::map<double, std::array<double, fields>> merged;  // in label order, whatever the ranks
+  for (std::size_t at = 0; at + fields <= all.size(); at += fields) {
+    std::array<double, fields>& r = merged.try_emplace(all[at], std::array<double, fields>{}).first->second;
+    r[0] = all[at];
+    r[1] += all[at + 1];
+    for (int d = 0; d < 3; ++d) r[2 + d] = std::max(r[2 + d], all[at + 2 + d]), r[5 + d] += all[at + 5 + d];
+    if (all[at + 8] != 0) std::copy(all.begin() + static_cast<long>(at + 8), all.begin() + static_cast<long>(at + 12), r.begin() + 8);
+  }
+  double total = 0;  // Σ |net body force| over the fragments: the scale of "a net force"
+  for (const auto& [label, r] : merged) total += std::hypot(r[5], r[6], r[7]);
+  const std::array<double, fields>* worst = nullptr;
+  double worst_force = 0;
+  std::size_t unsupported = 0;
+  for (const auto& [label, r] : merged) {
+    double free_force = 0;
+    for (int d = 0; d < 3; ++d)
+      if (r[2 + d] == 0) free_force = std::hypot(free_force, r[5 + d]);
+    if (!(free_force > 1e-9 * total)) continue;
+    ++unsupported;
+    if (free_force > worst_force) worst_force = free_force, worst = &r;
+  }
+  if (worst == nullptr) return {};
+  const std::array<double, fields>& r = *worst;
+  return fmt::format(
+      "the body has come apart: {} fragment{} without support carr{} a net load, the largest {:.3g} N on {} points "
+      "(fragment of point {} at ({:g}, {:g}, {:g}) m), so no equilibrium exists",
+      unsupported, unsupported == 1 ? "" : "s", unsupported == 1 ? "ies" : "y", worst_force,
+      static_cast<std::uint64_t>(r[1]), static_cast<std::uint64_t>(r[0]), r[9], r[10], r[11]);
+}
+
 void DynamicRelaxation::initialize() {
   sim_.apply_initial_state();
   State& state = sim_.state();
@@ -132,6 +232,7 @@ void DynamicRelaxation::initialize() {
     iterations_ = 0;
     broken_ = 0;
     solve_and_commit(0.0);
+    loads_jumped_ = true;  // from nothing before t = 0
     return;
   }
   std::string failure;
@@ -239,12 +340,14 @@ std::int64_t DynamicRelaxation::relax() {
       load_scale_ = std::max(load_scale_, r.load);
       return iteration;
     }
-    if (iteration >= max_iterations_)
+    if (iteration >= max_iterations_) {
+      const std::string apart = unsupported_fragment();
       throw NumericalError(fmt::format(
           "dynamic relaxation did not converge in load step {} (time {:.6g} s, load factor {:.6g}): relative force "
-          "residual {:.3e} after {} iterations, tolerance {:.3e}; raise solver.max_iterations, loosen "
-          "solver.tolerance or use more load_steps",
-          state.step + 1, state.time, load_factor_, residual_, iteration, tolerance_));
+          "residual {:.3e} after {} iterations, tolerance {:.3e}; {}",
+          state.step + 1, state.time, load_factor_, residual_, iteration, tolerance_,
+          apart.empty() ? "raise solver.max_iterations, loosen solver.tolerance or use more load_steps" : apart));
+    }
     double c = 0;
     if (iteration > 0) {
       // Local Rayleigh quotient over the free dofs that moved (both sums reproducible).
@@ -283,9 +386,9 @@ void DynamicRelaxation::advance() {
   iterations_ = 0;
   broken_ = 0;
   if (stepped_loads_) {
-    solve_and_commit(dt);  // under the loads of t_{k−1}, still in place
+    creep(t, dt);  // under the loads of t_{k−1}, still in place
     load_factor_ = factor;
-    set_loads(t, factor);
+    loads_jumped_ = set_loads_and_compare(t, factor);
     solve_and_commit(0.0);
   } else {
     load_factor_ = factor;
@@ -312,6 +415,10 @@ void DynamicRelaxation::solve_and_commit(double dt) {
     const std::uint64_t broken = sim_.break_bonds();
     broken_ += broken;
     if (broken == 0) break;
+    // A piece cut loose under load has no equilibrium: say so now rather than after max_iterations.
+    if (const std::string apart = unsupported_fragment(); !apart.empty())
+      throw NumericalError(fmt::format("dynamic relaxation, load step {} (time {:.6g} s): {} bonds broke and {}",
+                                       state.step + 1, state.time, broken, apart));
     if (break_once_per_step_) {
       relax();
       break;

@@ -61,6 +61,10 @@ class DynamicRelaxation final : public TimeIntegrator {
   /// Relaxes the current load to equilibrium from rest (no bond breaks, nothing committed); returns the
   /// iterations. Throws NumericalError past max_iterations.
   std::int64_t relax();
+  /// Why no equilibrium exists, when a fragment without support along some axis carries a net applied force
+  /// along it: a sentence naming the most loaded such fragment, the same on every rank; empty otherwise.
+  /// Collective.
+  std::string unsupported_fragment();
   /// The force on the free dofs (internal + body + wall), zero on prescribed ones; evaluates first.
   void evaluate_residual_force(std::vector<double>& F);
   /// Body plus wall force density of dof k (the load factor applied), at the last evaluation.
@@ -78,9 +82,14 @@ class DynamicRelaxation final : public TimeIntegrator {
   template <class Value>
   double weighted_norm(Value&& value) const;
   void set_loads(double t, double factor);
+  /// set_loads, and whether any body force or prescribed displacement changed (on any rank).
+  bool set_loads_and_compare(double t, double factor);
+  /// The creep over [t − Δt, t] under the loads in place: one equilibrium, or creep_substeps of them, each twice
+  /// as long as the one before, when the loads jumped at t − Δt.
+  void creep(double t, double dt);
   /// Relaxes, breaks what is over-stretched, relaxes again until nothing breaks (breaking: once_per_step:
   /// once), and commits over Δt (the real time this equilibrium closes), with the external work of the change
-  /// from committed_u_.
+  /// from committed_u_. Throws NumericalError when the breaking has cut a loaded piece loose.
   void solve_and_commit(double dt);
 
   Simulation& sim_;
@@ -91,6 +100,8 @@ class DynamicRelaxation final : public TimeIntegrator {
   double density_factor_;          ///< fictitious density / the Gerschgorin bound
   bool stepped_loads_;             ///< load_history: steps
   bool break_once_per_step_;       ///< breaking: once_per_step
+  int creep_substeps_;             ///< equilibria of the creep after a load jump (load_history: steps)
+  bool loads_jumped_ = false;      ///< the loads changed at the last load step's time
   std::vector<double> density_;  ///< Λ per point (kg/m³ with Δt = 1)
   VectorField body_force_;       ///< the deck's body force at t_k, before the load factor
   std::vector<double> velocity_, force_, previous_force_;  ///< per owned dof

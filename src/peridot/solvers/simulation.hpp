@@ -172,6 +172,13 @@ class Simulation {
   /// bonds, plus the per-step failure check (one small all-reduce) in seconds.
   Halo::Traffic communication() const;
 
+  /// Labels state_.fragment now, with the bonds as they are (they may have broken since the step's labelling).
+  /// Collective.
+  void relabel_fragments() {
+    fragments_step_ = -1;
+    fragments();
+  }
+
  private:
   /// Labels state_.fragment, once per step (collective).
   void fragments();
