@@ -245,6 +245,27 @@ output: {progress: false}
               std::string::npos)
         << message;
   }
+  // Whole and pulled both ways, with no support: balanced loads (a net force of round-off) are not a loose piece.
+  std::string balanced = deck;
+  for (auto [from, to] : {std::pair<std::string, std::string>{"  - at: 0.0301\n", "  - at: 1\n"},
+                          {"  - {node_set: held, displacement: {x: \"0\"}}\n", ""},
+                          {"boundary_conditions:\n", ""},
+                          {"  - {node_set: pulled, x: \"1e6\"}", "  - {node_set: pulled, x: \"1e6\"}\n  - {node_set: held, x: \"-1e6\"}"},
+                          {"max_iterations: 200", "max_iterations: 5"}}) {
+    const std::size_t at = balanced.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    balanced.replace(at, from.size(), to);
+  }
+  Simulation free_bar(parse_deck(balanced, "deck.yaml", "."));
+  free_bar.initialize();
+  try {
+    free_bar.step();
+    FAIL() << "converged in 5 iterations";
+  } catch (const NumericalError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("raise solver.max_iterations"), std::string::npos) << message;
+    EXPECT_EQ(message.find("come apart"), std::string::npos) << message;
+  }
 }
 
 // Pulled past its strength, the bar breaks at the first equilibrium: the check after breaking reports the loose

@@ -167,8 +167,9 @@ std::string DynamicRelaxation::unsupported_fragment() {
   const Discretization& disc = sim_.discretization();
   const auto& kind = sim_.loads().dof_kinds();
   // Per fragment of this rank's points: label, points, supported along x, y, z (a prescribed dof, or a wall
-  // pressing), the net body force along x, y, z, and where the point that names it is (when it is here).
-  constexpr std::size_t fields = 12;
+  // pressing), the net body force along x, y, z, where the point that names it is (when it is here), and
+  // Σ |b V| of its points (the scale below which a net force is round-off).
+  constexpr std::size_t fields = 13;
   std::map<double, std::array<double, fields>> local;
   for (std::size_t i = 0; i < sim_.num_owned(); ++i) {
     const double label = state.fragment[i];
@@ -180,7 +181,9 @@ std::string DynamicRelaxation::unsupported_fragment() {
       const std::size_t k = 3 * i + static_cast<std::size_t>(d);
       const bool wall = sim_.has_walls() && sim_.wall_force().data()[k] != 0;
       if (kind[k] != DofKind::free || wall) r[2 + d] = 1;
-      if (sim_.loads().has_body_force()) r[5 + d] += state.body_force.data()[k] * disc.volume[i];
+      if (!sim_.loads().has_body_force()) continue;
+      r[5 + d] += state.body_force.data()[k] * disc.volume[i];
+      r[12] += std::abs(state.body_force.data()[k]) * disc.volume[i];
     }
     if (static_cast<double>(disc.input_id.empty() ? i : disc.input_id[i]) == label) {
       const Vec3 x = disc.x.get(i);
@@ -197,9 +200,10 @@ std::string DynamicRelaxation::unsupported_fragment() {
     r[1] += all[at + 1];
     for (int d = 0; d < 3; ++d) r[2 + d] = std::max(r[2 + d], all[at + 2 + d]), r[5 + d] += all[at + 5 + d];
     if (all[at + 8] != 0) std::copy(all.begin() + static_cast<long>(at + 8), all.begin() + static_cast<long>(at + 12), r.begin() + 8);
+    r[12] += all[at + 12];
   }
-  double total = 0;  // Σ |net body force| over the fragments: the scale of "a net force"
-  for (const auto& [label, r] : merged) total += std::hypot(r[5], r[6], r[7]);
+  double total = 0;  // Σ |b V| of every point: a balanced load's net force is round-off of this
+  for (const auto& [label, r] : merged) total += r[12];
   const std::array<double, fields>* worst = nullptr;
   double worst_force = 0;
   std::size_t unsupported = 0;
