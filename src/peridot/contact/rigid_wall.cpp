@@ -67,8 +67,9 @@ RigidWalls::RigidWalls(const Problem& problem, const ModelContext& model) : mode
   for (const MaterialParams& p : model.params) {
     const double delta = p.horizon, c = p.stable_micromodulus;
     if (p.dimension == 1) {
-      double harmonic = 0;
-      for (long k = 1; k <= static_cast<long>(std::floor(delta / problem.spacing * (1 + 1e-10))); ++k) harmonic += 1.0 / k;
+      double harmonic = 0;  // point files give no spacing: the nearest neighbours only, then
+      const long neighbours = problem.spacing > 0 ? static_cast<long>(std::floor(delta / problem.spacing * (1 + 1e-10))) : 1;
+      for (long k = 1; k <= neighbours; ++k) harmonic += 1.0 / static_cast<double>(k);
       point_stiffness_.push_back(2 * problem.area * c * std::max(harmonic, 1.0));
       continue;
     }
