@@ -3,7 +3,7 @@
 
 The bar's solid: Young's modulus E(t) = E∞ + Σ E_k exp(−t/τ_k) (the paper's Table 1). Under a stress history σ(t) its
 strain is ε(t) = ∫ D(t − s) dσ(s), D the creep compliance, the inverse of E in the Laplace domain (docs/algorithms.md
-§11, with E for μ): for σ0 on [0, t1), ε(t) = σ0 [D(t) − H(t − t1) D(t − t1)]. Two measures of the bar's strain:
+§11 and tools/prony.py, with E for μ): for σ0 on [0, t1), ε(t) = σ0 [D(t) − H(t − t1) D(t − t1)]. Two measures of the bar's strain:
 
 - the middle: the displacement difference of the points at L/4 and 3L/4 over their distance (no end within δ);
 - the whole bar: the last point's displacement over its distance to the held first point (both ends' boundary
@@ -30,6 +30,8 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
+import prony  # noqa: E402  (the closed-form creep compliance)
 SIGMA, RELEASE, L = 2000.0, 0.005, 0.3
 E_INF = 700e6
 E_TERMS = [200, 800, 1500, 1000, 1100, 2700, 2900, 2500, 900, 950, 600, 120, 180, 200, 250]  # MPa, Table 1
@@ -49,27 +51,8 @@ def wlf_shift(hot):
 
 
 def creep_compliance(hot=False):
-    """D(t) of E(t): 1/E∞ + Σ_k exp(ρ_k t)/(ρ_k g′(ρ_k)), ρ_k the roots of g(s) = E∞ + Σ E_i s/(s + λ_i), one
-    between each pair of consecutive −λ (and in (−λ_min, 0)), found by bisection."""
-    E = np.array(E_TERMS) * 1e6
-    lam = 1 / (wlf_shift(hot) * np.array(TAUS))
-    g = lambda s: E_INF + np.sum(E * s / (s + lam))
-    dg = lambda s: np.sum(E * lam / (s + lam) ** 2)
-    order = np.argsort(lam)
-    roots = []
-    for k, idx in enumerate(order):
-        lo, hi = -lam[idx], (0.0 if k == 0 else -lam[order[k - 1]])
-        for _ in range(400):
-            mid = 0.5 * (lo + hi)
-            if mid <= lo or mid >= hi:
-                break
-            if g(mid) < 0:
-                lo = mid
-            else:
-                hi = mid
-        roots.append(0.5 * (lo + hi))
-    amplitude = [1 / (r * dg(r)) for r in roots]
-    return lambda t: 1 / E_INF + sum(a * np.exp(r * t) for a, r in zip(amplitude, roots))
+    """D(t) of E(t), the relaxation times shifted in the hot case (tools/prony.py)."""
+    return prony.creep_compliance(E_INF, np.array(E_TERMS) * 1e6, wlf_shift(hot) * np.array(TAUS))
 
 
 def closed_form(t, hot=False):

@@ -4,7 +4,7 @@
 The solid of the 2D thermoviscoelastic model: in-plane bulk modulus κ elastic (from K and the glassy μ0, plane
 stress κ = 9Kμ0/(3K + 4μ0)), shear modulus the Prony series μ(t). Under uniaxial stress σ(t) its strain is
 ε_xx = ∫ [1/(4κ) + J(t − s)/4] dσ(s), J the shear creep compliance (docs/algorithms.md §11: the inverse of μ in the
-Laplace domain, its poles found by bisection). For σ0 on [0, t1): ε(t) = σ0 [D(t) − H(t − t1) D(t − t1)], D = 1/(4κ) +
+Laplace domain: tools/prony.py). For σ0 on [0, t1): ε(t) = σ0 [D(t) − H(t − t1) D(t − t1)], D = 1/(4κ) +
 J/4. The plate is free to contract laterally, so away from its ends u_x = ε_xx (x − x₀), x₀ the rollers' row.
 
     creep.py --peridot PATH [--out DIR] [--threads N] [--spacing MM] [--horizon MM] [--check TOL] [--case shear]
@@ -27,6 +27,8 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
+import prony  # noqa: E402  (the closed-form creep compliance)
 SIGMA, RELEASE, L, W = 2000.0, 0.005, 0.3, 0.15
 # §8.2: the shear case at a uniform 200 °C, σ0 = 1 MPa, WLF with the paper's eq 44 (c1 = 30, c2 = 100 K, T0 = 110 °C),
 # α = 50e-6 /K from the reference temperature (20 °C: the paper does not give one).
@@ -50,30 +52,13 @@ def compliance(case="tension"):
     shear creep compliance (γ_xy = τ J for a held shear stress τ: shear)."""
     mu_inf = E_INF * 1e6 / (2 * (1 + NU))
     mu = np.array(E_TERMS) * 1e6 / (2 * (1 + NU))
-    lam = 1 / (wlf_shift(case) * np.array(TAUS))
     mu0 = mu_inf + mu.sum()
     K = (E_INF + sum(E_TERMS)) * 1e6 / (3 * (1 - 2 * NU))
     kappa = 9 * K * mu0 / (3 * K + 4 * mu0)
-    g = lambda s: mu_inf + np.sum(mu * s / (s + lam))
-    dg = lambda s: np.sum(mu * lam / (s + lam) ** 2)
-    order = np.argsort(lam)
-    roots = []
-    for k, idx in enumerate(order):
-        lo, hi = -lam[idx], (0.0 if k == 0 else -lam[order[k - 1]])
-        for _ in range(400):
-            mid = 0.5 * (lo + hi)
-            if mid <= lo or mid >= hi:
-                break
-            if g(mid) < 0:
-                lo = mid
-            else:
-                hi = mid
-        roots.append(0.5 * (lo + hi))
-    amplitude = [1 / (r * dg(r)) for r in roots]
+    J = prony.creep_compliance(mu_inf, mu, wlf_shift(case) * np.array(TAUS))
 
     def D(t):
-        J = 1 / mu_inf + sum(a * np.exp(r * t) for a, r in zip(amplitude, roots))
-        return 1 / (4 * kappa) + J / 4 if case == "tension" else J
+        return 1 / (4 * kappa) + J(t) / 4 if case == "tension" else J(t)
 
     return D
 

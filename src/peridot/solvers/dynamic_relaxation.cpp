@@ -1,7 +1,6 @@
 #include "peridot/solvers/dynamic_relaxation.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -161,67 +160,82 @@ void DynamicRelaxation::creep(double t, double dt) {
   }
 }
 
+namespace {
+
+/// What unsupported_fragment sums over a fragment's points, as doubles so that ranks can gather it.
+struct FragmentSum {
+  double label = 0, points = 0;
+  double supported[3] = {0, 0, 0};  ///< 1 where some point has a prescribed dof or a wall along that axis
+  double force[3] = {0, 0, 0};      ///< Σ b V
+  double magnitude = 0;             ///< Σ |b V|: a balanced load's net force is round-off of this
+  double named_here = 0, x[3] = {0, 0, 0};  ///< the point that names it (label = its input id), when counted here
+  static constexpr std::size_t fields = 13;
+
+  void append_to(std::vector<double>& flat) const {
+    flat.insert(flat.end(), {label, points, supported[0], supported[1], supported[2], force[0], force[1], force[2],
+                             magnitude, named_here, x[0], x[1], x[2]});
+  }
+  /// Adds another rank's sums of the same fragment (f: fields doubles written by append_to).
+  void merge(const double* f) {
+    label = f[0];
+    points += f[1];
+    for (int d = 0; d < 3; ++d) supported[d] = std::max(supported[d], f[2 + d]), force[d] += f[5 + d];
+    magnitude += f[8];
+    if (f[9] != 0) named_here = 1, x[0] = f[10], x[1] = f[11], x[2] = f[12];
+  }
+};
+
+}  // namespace
+
 std::string DynamicRelaxation::unsupported_fragment() {
   sim_.relabel_fragments();
   const State& state = sim_.state();
   const Discretization& disc = sim_.discretization();
   const auto& kind = sim_.loads().dof_kinds();
-  // Per fragment of this rank's points: label, points, supported along x, y, z (a prescribed dof, or a wall
-  // pressing), the net body force along x, y, z, where the point that names it is (when it is here), and
-  // Σ |b V| of its points (the scale below which a net force is round-off).
-  constexpr std::size_t fields = 13;
-  std::map<double, std::array<double, fields>> local;
+  const bool body = sim_.loads().has_body_force(), walls = sim_.has_walls();
+  std::map<double, FragmentSum> local;
   for (std::size_t i = 0; i < sim_.num_owned(); ++i) {
-    const double label = state.fragment[i];
-    auto [at, added] = local.try_emplace(label, std::array<double, fields>{});
-    std::array<double, fields>& r = at->second;
-    if (added) r[0] = label, r[8] = 0;
-    r[1] += 1;
+    FragmentSum& f = local[state.fragment[i]];
+    f.label = state.fragment[i];
+    f.points += 1;
     for (int d = 0; d < 3; ++d) {
       const std::size_t k = 3 * i + static_cast<std::size_t>(d);
-      const bool wall = sim_.has_walls() && sim_.wall_force().data()[k] != 0;
-      if (kind[k] != DofKind::free || wall) r[2 + d] = 1;
-      if (!sim_.loads().has_body_force()) continue;
-      r[5 + d] += state.body_force.data()[k] * disc.volume[i];
-      r[12] += std::abs(state.body_force.data()[k]) * disc.volume[i];
+      if (kind[k] != DofKind::free || (walls && sim_.wall_force().data()[k] != 0)) f.supported[d] = 1;
+      if (!body) continue;
+      f.force[d] += state.body_force.data()[k] * disc.volume[i];
+      f.magnitude += std::abs(state.body_force.data()[k]) * disc.volume[i];
     }
-    if (static_cast<double>(disc.input_id.empty() ? i : disc.input_id[i]) == label) {
+    if (static_cast<double>(disc.input_id.empty() ? i : disc.input_id[i]) == f.label) {
       const Vec3 x = disc.x.get(i);
-      r[8] = 1, r[9] = x.x, r[10] = x.y, r[11] = x.z;
+      f.named_here = 1, f.x[0] = x.x, f.x[1] = x.y, f.x[2] = x.z;
     }
   }
   std::vector<double> flat;
-  for (const auto& [label, r] : local) flat.insert(flat.end(), r.begin(), r.end());
+  for (const auto& entry : local) entry.second.append_to(flat);
   const std::vector<double> all = sim_.communicator().all_gather(flat);
-  std::map<double, std::array<double, fields>> merged;  // in label order, whatever the ranks
-  for (std::size_t at = 0; at + fields <= all.size(); at += fields) {
-    std::array<double, fields>& r = merged.try_emplace(all[at], std::array<double, fields>{}).first->second;
-    r[0] = all[at];
-    r[1] += all[at + 1];
-    for (int d = 0; d < 3; ++d) r[2 + d] = std::max(r[2 + d], all[at + 2 + d]), r[5 + d] += all[at + 5 + d];
-    if (all[at + 8] != 0) std::copy(all.begin() + static_cast<long>(at + 8), all.begin() + static_cast<long>(at + 12), r.begin() + 8);
-    r[12] += all[at + 12];
-  }
-  double total = 0;  // Σ |b V| of every point: a balanced load's net force is round-off of this
-  for (const auto& [label, r] : merged) total += r[12];
-  const std::array<double, fields>* worst = nullptr;
+  std::map<double, FragmentSum> merged;  // in label order, whatever the ranks
+  for (std::size_t at = 0; at + FragmentSum::fields <= all.size(); at += FragmentSum::fields)
+    merged[all[at]].merge(&all[at]);
+  double total = 0;
+  for (const auto& entry : merged) total += entry.second.magnitude;
+  const FragmentSum* worst = nullptr;
   double worst_force = 0;
   std::size_t unsupported = 0;
-  for (const auto& [label, r] : merged) {
-    double free_force = 0;
+  for (const auto& [label, f] : merged) {
+    double free_force = 0;  // the net force along the axes it has no support on
     for (int d = 0; d < 3; ++d)
-      if (r[2 + d] == 0) free_force = std::hypot(free_force, r[5 + d]);
+      if (f.supported[d] == 0) free_force = std::hypot(free_force, f.force[d]);
     if (!(free_force > 1e-9 * total)) continue;
     ++unsupported;
-    if (free_force > worst_force) worst_force = free_force, worst = &r;
+    if (free_force > worst_force) worst_force = free_force, worst = &f;
   }
   if (worst == nullptr) return {};
-  const std::array<double, fields>& r = *worst;
   return fmt::format(
       "the body has come apart: {} fragment{} without support carr{} a net load, the largest {:.3g} N on {} points "
       "(fragment of point {} at ({:g}, {:g}, {:g}) m), so no equilibrium exists",
       unsupported, unsupported == 1 ? "" : "s", unsupported == 1 ? "ies" : "y", worst_force,
-      static_cast<std::uint64_t>(r[1]), static_cast<std::uint64_t>(r[0]), r[9], r[10], r[11]);
+      static_cast<std::uint64_t>(worst->points), static_cast<std::uint64_t>(worst->label), worst->x[0], worst->x[1],
+      worst->x[2]);
 }
 
 void DynamicRelaxation::initialize() {
@@ -392,7 +406,11 @@ void DynamicRelaxation::advance() {
   if (stepped_loads_) {
     creep(t, dt);  // under the loads of t_{k−1}, still in place
     load_factor_ = factor;
-    loads_jumped_ = set_loads_and_compare(t, factor);
+    if (creep_substeps_ > 1) {
+      loads_jumped_ = set_loads_and_compare(t, factor);
+    } else {
+      set_loads(t, factor);
+    }
     solve_and_commit(0.0);
   } else {
     load_factor_ = factor;

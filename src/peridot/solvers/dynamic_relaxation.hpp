@@ -101,7 +101,7 @@ class DynamicRelaxation final : public TimeIntegrator {
   bool stepped_loads_;             ///< load_history: steps
   bool break_once_per_step_;       ///< breaking: once_per_step
   int creep_substeps_;             ///< equilibria of the creep after a load jump (load_history: steps)
-  bool loads_jumped_ = false;      ///< the loads changed at the last load step's time
+  bool loads_jumped_ = false;      ///< the loads changed at the last load step's time (tracked with creep substeps only)
   std::vector<double> density_;  ///< Λ per point (kg/m³ with Δt = 1)
   VectorField body_force_;       ///< the deck's body force at t_k, before the load factor
   std::vector<double> velocity_, force_, previous_force_;  ///< per owned dof
