@@ -14,6 +14,7 @@
 //                                              C_HG = 0.05; σ_y = 1e4 Pa makes the points flow at the default
 //                                              v0: a Brent solve per point and step)
 //   --lammps-failure-order   a bond failing in a step still carries that step's force, as in LAMMPS PERI
+//   --contact                short-range contact on (contact: {} in a deck): its cost when nothing touches
 //   mpirun -np R bench_explicit …   distributed: rates per core over all R × threads cores, the slowest
 //                                   rank's loop time, and its communication (halo exchanges and the
 //                                   per-step failure check: seconds, messages and bytes per step)
@@ -51,6 +52,7 @@ struct Options {
   std::string law = "j2";       // correspondence
   int threads = 1;
   bool lammps_failure_order = false;
+  bool contact = false;
   std::string dump;
 };
 
@@ -69,6 +71,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--yield-stress") o.yield_stress = std::stod(next());
     else if (a == "--law") o.law = next();
     else if (a == "--lammps-failure-order") o.lammps_failure_order = true;
+    else if (a == "--contact") o.contact = true;
     else if (a == "--threads") o.threads = std::stoi(next());
     else if (a == "--dump") o.dump = next();
     else {
@@ -121,6 +124,7 @@ Problem benchmark_problem(const Options& o) {
     m.damage.critical_stretch = o.critical_stretch;
   }
   p.materials = {m};
+  if (o.contact) p.contact = ContactSpec{};
   BodySpec b;
   b.name = "block";
   b.material = "steel";
@@ -230,12 +234,15 @@ int main(int argc, char** argv) {
       "\"communication\": {\"share_of_loop\": %.4f, \"share_of_loop_least_waiting_rank\": %.4f, \"seconds\": %.4f, "
       "\"u_exchange_s\": %.3g, \"messages_per_step_per_rank\": %.1f, "
       "\"bytes_per_step_per_rank\": %.0f, \"ghosts_per_rank\": %.0f, \"peak_rss_mib_all_ranks\": %.0f}, "
-      "\"kinetic_energy\": %.17g, \"strain_energy\": %.17g, \"dissipated_energy\": %.17g, \"max_damage\": %.6g}\n",
+      "\"kinetic_energy\": %.17g, \"strain_energy\": %.17g, \"dissipated_energy\": %.17g, \"max_damage\": %.6g, "
+      "\"contact_pairs\": %.0f, \"contact_list_builds\": %.0f}\n",
       o.model.c_str(), points, bonds, o.steps, comm.size(), o.threads, sim.time_step(), setup_s, run_s, run_cpu_s,
       updates_per_s_core, bonds * o.steps / run_cpu_s / comm.size(),
       neighbor_bytes + state_bytes + offset_bytes + history_bytes, neighbor_bytes, state_bytes, offset_bytes, history_bytes,
       rss_mib, run_s > 0 ? comm_s / run_s : 0.0, run_s > 0 ? comm_min_s / run_s : 0.0, comm_s, exchange_s, messages, bytes, ghosts, peak_rss_sum, totals.kinetic_energy,
-      totals.strain_energy, totals.dissipated_energy, totals.max_damage);
+      totals.strain_energy, totals.dissipated_energy, totals.max_damage,
+      sim.short_range() ? static_cast<double>(sim.short_range()->pairs()) : 0.0,
+      sim.short_range() ? static_cast<double>(sim.short_range()->builds()) : 0.0);
 
   if (!o.dump.empty()) {  // final state by lattice index, for comparison with LAMMPS
     // The last column is the fraction of a point's bonds that are broken, unweighted: LAMMPS's damage/atom

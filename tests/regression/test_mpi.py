@@ -28,6 +28,8 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/surface_correction_small.yaml",
      "surface correction of pmb beside lps (factors from ghosts' energies), jitter, bond failure"),
     ("tests/regression/decks/energy_failure_small.yaml", "lps 2D, bonds breaking by their work (damage criterion: energy)"),
+    ("tests/regression/decks/mpi_contact.yaml",
+     "short-range contact with fragments and friction, a free rigid ball and a fixed rigid box"),
 ]
 RANKS = [1, 2, 3, 4]
 

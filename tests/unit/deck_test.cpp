@@ -776,3 +776,74 @@ TEST(Deck, SolverTypesRoundTrip) {
 
 }  // namespace
 }  // namespace peridot
+
+namespace peridot {
+namespace {
+
+const std::string deck_contact = R"deck(discretization: {dimension: 3, spacing: 1 mm, horizon_factor: 3}
+materials:
+  al: {model: pmb, density: 2700, youngs_modulus: 70 GPa}
+bodies:
+  plate: {material: al, shape: {box: {min: [0, 0, 0], max: [0.01, 0.01, 0.002]}}}
+  chip: {material: al, shape: {box: {min: [0, 0, 0.006], max: [0.002, 0.002, 0.008]}}}
+rigid_walls:
+  - {name: floor, point: [0, 0, 0], normal: [0, 0, 1]}
+rigid_bodies:
+  - name: ball
+    sphere: {center: [0.005, 0.005, 0.005], radius: 1 mm}
+    mass: 3 g
+    velocity: [0, 0, -50]
+  - name: punch
+    cylinder: {center: [0.005, 0.005, 0.003], axis: [0, 0, 2], radius: 1 mm, length: 2 mm}
+    displacement: {z: "-10*t"}
+  - {name: anvil, box: {min: [-1, -1, -1], max: [1, 1, -0.001]}}
+contact:
+  stiffness_factor: 10
+  friction:
+    - {bodies: [plate, chip], coefficient: 0.3}
+solver: {end_time: 1 us}
+)deck";
+
+TEST(Deck, RigidBodiesAndContact) {
+  const Problem p = parse(deck_contact);
+  ASSERT_EQ(p.rigid_bodies.size(), 3u);
+  EXPECT_EQ(p.rigid_bodies[0].motion, RigidMotionKind::free);
+  EXPECT_DOUBLE_EQ(p.rigid_bodies[0].mass, 0.003);
+  EXPECT_DOUBLE_EQ(p.rigid_bodies[0].velocity.z, -50);
+  EXPECT_EQ(p.rigid_bodies[1].motion, RigidMotionKind::prescribed);
+  EXPECT_DOUBLE_EQ(p.rigid_bodies[1].axis.z, 1.0);
+  EXPECT_EQ(p.rigid_bodies[2].motion, RigidMotionKind::fixed);
+  EXPECT_EQ(p.rigid_bodies[2].shape, RigidShapeKind::box);
+  ASSERT_TRUE(p.contact.has_value());
+  EXPECT_DOUBLE_EQ(p.contact->stiffness_factor, 10);
+  EXPECT_DOUBLE_EQ(p.contact->distance_factor, 1.35);
+  EXPECT_DOUBLE_EQ(p.contact->reference_fraction, 0.9);
+  ASSERT_EQ(p.contact->friction.size(), 1u);
+  EXPECT_EQ(p.contact->friction[0].second, "chip");
+  const std::string resolved = resolved_deck_yaml(p);
+  EXPECT_EQ(resolved_deck_yaml(parse(resolved)), resolved);
+
+  std::string velocity = replaced(deck_contact, "    mass: 3 g\n", "");
+  expect_error(velocity, position_of(velocity, "[0, 0, -50]"), "velocity is the initial velocity of a free body: give its mass");
+  std::string both = replaced(deck_contact, "    mass: 3 g\n", "    mass: 3 g\n    displacement: {z: \"t\"}\n");
+  expect_error(both, position_of(both, "displacement: {z: \"t\"}"), "give only one of 'mass' and 'displacement'");
+  std::string same = replaced(deck_contact, "name: anvil", "name: floor");
+  expect_error(same, position_of(same, "{name: floor, box"), "two rigid walls or bodies are named 'floor'");
+  std::string shapes = replaced(deck_contact, "  - {name: anvil, box:", "  - {name: anvil, sphere: {center: [0, 0, 0], radius: 1}, box:");
+  expect_error(shapes, position_of(shapes, "box: {min: [-1"), "give only one of 'sphere' and 'box'");
+  std::string unknown = replaced(deck_contact, "[plate, chip]", "[plate, chips]");
+  expect_error(unknown, position_of(unknown, "[plate, chips]"), "no body is named 'chips'");
+  std::string three = replaced(deck_contact, "[plate, chip]", "[plate, chip, plate]");
+  expect_error(three, position_of(three, "[plate, chip, plate]"), "give two bodies, or one for friction within it");
+  std::string twice = replaced(deck_contact, "    - {bodies: [plate, chip], coefficient: 0.3}\n",
+                               "    - {bodies: [plate, chip], coefficient: 0.3}\n    - {bodies: [chip, plate], coefficient: 0.1}\n");
+  expect_error(twice, position_of(twice, "{bodies: [chip, plate]"), "the friction of 'chip' and 'plate' is given twice");
+  std::string relaxation = replaced(deck_contact, "solver: {end_time: 1 us}", "solver: {type: relaxation}");
+  relaxation = replaced(relaxation, "    velocity: [0, 0, -50]\n", "");
+  expect_error(relaxation, position_of(relaxation, "name: ball"), "a moving or free rigid body is not supported with solver type 'relaxation'");
+  std::string flat = replaced(replaced(deck_contact, "dimension: 3,", "dimension: 2, plane: stress,"), "cylinder:", "cylinder:");
+  expect_error(flat, position_of(flat, "cylinder:"), "'cylinder' applies to 3D decks only");
+}
+
+}  // namespace
+}  // namespace peridot

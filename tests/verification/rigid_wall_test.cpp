@@ -40,7 +40,7 @@ TEST(RigidWall, ThrownCubeBouncesWithMomentumEqualToTheImpulse) {
   const double dt = sim.time_step();
   Vec3 impulse;  // on the body: −(force on the wall), trapezoidal over each step
   // The force on the wall at the current state, as the history computes it.
-  auto wall_force = [&] { return sim.walls().force_on_wall(0, sim.discretization(), sim.state().u, sim.state().time); };
+  auto wall_force = [&] { return sim.rigid_bodies().force_on(0, sim.discretization(), sim.state().u); };
   Vec3 previous = -1.0 * wall_force();
   const double wall_z = 0.49e-3;
   double deepest = 0, peak_force = 0;

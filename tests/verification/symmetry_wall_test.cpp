@@ -74,7 +74,7 @@ TEST(SymmetryWall, HalfBodyOnThePlaneMovesAsTheWholeBodyThrownAtItsMirrorImage) 
     for (std::size_t i = 0; i < dw.num_points(); ++i)
       if (dw.x(i, 2) > 0)
         for (int d = 0; d < 3; ++d) across[d] += whole.state().force(i, d) * dw.volume[i];
-    const Vec3 on_wall = half.totals().wall_force[0];
+    const Vec3 on_wall = half.totals().rigid_force[0];
     worst_force = std::max(worst_force, norm(on_wall + across));
     largest_force = std::max(largest_force, norm(across));
     for (std::size_t i = 0; i < dh.num_points(); ++i) {
@@ -139,7 +139,7 @@ TEST(SymmetryWall, HomogeneousCompressionLoadsThePointsNextToThePlaneAsInteriorP
   EXPECT_GT(sigma, 1e8);
   EXPECT_LT(worst_force, 1e-9 * scale);
   EXPECT_GT(penalty_force, 0.1 * scale);
-  EXPECT_LT(symmetric->totals().wall_force[0].z, 0.0);  // the slab presses on the wall
+  EXPECT_LT(symmetric->totals().rigid_force[0].z, 0.0);  // the slab presses on the wall
 }
 
 TEST(SymmetryWall, ThrownCubeBouncesAndTheMirrorBondsAreReleased) {
@@ -150,12 +150,12 @@ TEST(SymmetryWall, ThrownCubeBouncesAndTheMirrorBondsAreReleased) {
   sim.initialize();
   const Totals start = sim.totals();
   const double dt = sim.time_step();
-  Vec3 impulse, previous = -1.0 * start.wall_force[0];
+  Vec3 impulse, previous = -1.0 * start.rigid_force[0];
   double released_at = -1, peak = 0;
   while (sim.state().step < sim.total_steps()) {
     sim.step();
     const Totals now = sim.totals();
-    const Vec3 force = -1.0 * now.wall_force[0];  // on the body
+    const Vec3 force = -1.0 * now.rigid_force[0];  // on the body
     impulse = impulse + (0.5 * dt) * (previous + force);
     previous = force;
     peak = std::max(peak, norm(force));
@@ -176,7 +176,7 @@ TEST(SymmetryWall, ThrownCubeBouncesAndTheMirrorBondsAreReleased) {
   EXPECT_GT(end.momentum.z, 0.5 * -start.momentum.z);       // it bounced
   EXPECT_NEAR(end.momentum.x, start.momentum.x, 1e-12 * p0);  // frictionless
   EXPECT_LT(norm(change - impulse), 1e-12 * p0);
-  EXPECT_EQ(end.wall_force[0].z, 0.0);  // released, and not touching the penalty plane
+  EXPECT_EQ(end.rigid_force[0].z, 0.0);  // released, and not touching the penalty plane
   EXPECT_NEAR(balance - end.external_work, start.kinetic_energy, 1e-2 * start.kinetic_energy);
 }
 

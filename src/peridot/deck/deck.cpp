@@ -601,6 +601,102 @@ struct Parser {
     }
   }
 
+  /// A unit vector from a point key (in 2D its z, in 1D its y and z dropped); an error when it is zero.
+  Vec3 unit_vector(const MapReader& r, std::string_view key) {
+    Vec3 n = r[key].point;
+    if (!r.given(key)) return n;
+    if (p.dimension <= 2) n.z = 0;
+    if (p.dimension == 1) n.y = 0;
+    if (norm(n) == 0) {
+      ctx.error(r[key].pos, r.path_of(key),
+                p.dimension == 1 ? "must not be zero (in 1D: its x)" : "must not be zero (in 2D: its x, y must not both be zero)");
+      return n;
+    }
+    return (1 / norm(n)) * n;
+  }
+
+  void parse_rigid_bodies(const Value& v) {
+    std::vector<std::string_view> names;
+    for (const RigidWallSpec& w : p.rigid_walls) names.push_back(w.name);
+    for_each_item(v, "rigid_bodies", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("rigid_bodies[i]").keys);
+      RigidBodySpec b;
+      b.name = r["name"].text;
+      b.pos = pos;
+      b.stiffness_factor = r["stiffness_factor"].number;
+      for (std::string_view kind : {"sphere", "cylinder", "box", "plane"}) {
+        if (!r.given(kind)) continue;
+        MapReader s(ctx, r[kind].node, r[kind].key_pos, r.path_of(kind), deck_section("rigid_bodies[i]." + std::string(kind)).keys);
+        if (kind == "sphere" || kind == "cylinder") {
+          b.shape = kind == "sphere" ? RigidShapeKind::sphere : RigidShapeKind::cylinder;
+          b.center = s["center"].point;
+          b.radius = s["radius"].number;
+          if (kind == "cylinder") b.axis = unit_vector(s, "axis"), b.length = s["length"].number;
+        } else if (kind == "box") {
+          b.shape = RigidShapeKind::box;
+          b.lo = s["min"].point;
+          b.hi = s["max"].point;
+          for (int d = 0; d < p.dimension; ++d)
+            if (s.given("min") && s.given("max") && !(b.lo[d] < b.hi[d]))
+              ctx.error(s["max"].pos, s.path_of("max"), fmt::format("max must exceed min in every coordinate ({} is not)", "xyz"[d]));
+        } else {
+          b.shape = RigidShapeKind::plane;
+          b.center = s["point"].point;
+          b.axis = unit_vector(s, "normal");
+        }
+      }
+      if (r.given("displacement")) {
+        b.motion = RigidMotionKind::prescribed;
+        MapReader d(ctx, r["displacement"].node, r["displacement"].key_pos, r.path_of("displacement"),
+                    deck_section("rigid_bodies[i].displacement").keys);
+        const std::array<std::optional<Expression>, 3> components = components_of(d);
+        for (std::size_t c = 0; c < 3; ++c) b.displacement[c] = components[c];
+      } else if (r.given("mass")) {
+        b.motion = RigidMotionKind::free;
+        b.mass = r["mass"].number;
+        b.velocity = r["velocity"].point;
+      }
+      if (r.given("velocity") && !r.given("mass"))
+        ctx.error(r["velocity"].pos, r.path_of("velocity"),
+                  "velocity is the initial velocity of a free body: give its mass too (a prescribed motion is a "
+                  "displacement)");
+      if (std::find(names.begin(), names.end(), b.name) != names.end())
+        ctx.error(pos, path, fmt::format("two rigid walls or bodies are named '{}'", b.name));
+      p.rigid_bodies.push_back(std::move(b));
+      names.push_back(p.rigid_bodies.back().name);
+    });
+  }
+
+  void parse_contact(const Value& v) {
+    MapReader r(ctx, v.node, v.key_pos, "contact", deck_section("contact").keys);
+    ContactSpec c;
+    c.pos = v.key_pos;
+    c.stiffness_factor = r["stiffness_factor"].number;
+    c.distance_factor = r["distance_factor"].number;
+    c.reference_fraction = r["reference_fraction"].number;
+    c.skin = r["skin"].number;
+    for_each_item(r["friction"], r.path_of("friction"), [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader f(ctx, node, pos, path, deck_section("contact.friction[i]").keys);
+      FrictionSpec spec;
+      spec.pos = pos;
+      spec.coefficient = f["coefficient"].number;
+      const std::vector<std::string>& bodies = f["bodies"].names;
+      if (f.given("bodies")) {
+        if (bodies.empty() || bodies.size() > 2)
+          ctx.error(f["bodies"].pos, f.path_of("bodies"), "give two bodies, or one for friction within it");
+        for (const std::string& name : bodies)
+          if (std::none_of(p.bodies.begin(), p.bodies.end(), [&](const BodySpec& b) { return b.name == name; }))
+            ctx.error(f["bodies"].pos, f.path_of("bodies"), fmt::format("no body is named '{}'", name));
+        if (!bodies.empty()) spec.first = bodies.front(), spec.second = bodies.back();
+      }
+      for (const FrictionSpec& other : c.friction)
+        if ((other.first == spec.first && other.second == spec.second) || (other.first == spec.second && other.second == spec.first))
+          ctx.error(pos, path, fmt::format("the friction of '{}' and '{}' is given twice", spec.first, spec.second));
+      c.friction.push_back(std::move(spec));
+    });
+    p.contact = std::move(c);
+  }
+
   // -- solver and output -------------------------------------------------------------------------
 
   /// The type's keys (deck/solver_schema.hpp) into p.solver.parameters; an unknown type is reported by the
@@ -656,6 +752,8 @@ struct Parser {
     parse_body_forces(r["body_forces"]);
     parse_tractions(r["tractions"]);
     parse_rigid_walls(r["rigid_walls"]);
+    parse_rigid_bodies(r["rigid_bodies"]);
+    if (r.given("contact")) parse_contact(r["contact"]);
     if (r.given("temperature")) parse_temperature(r["temperature"]);
     if (r.given("solver")) parse_solver(r["solver"]);
     if (const SolverInfo* solver = find_solver(p.solver.type); solver && solver->check) solver->check(p, ctx);

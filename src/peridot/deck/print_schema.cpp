@@ -132,7 +132,7 @@ void print_models(std::ostream& out, bool markdown) {
 void print_units(std::ostream& out, bool markdown) {
   constexpr Unit units[] = {Unit::length,   Unit::area, Unit::time,     Unit::pressure,     Unit::density,
                             Unit::energy_per_area, Unit::velocity, Unit::force_density, Unit::rate,
-                            Unit::temperature, Unit::specific_heat, Unit::thermal_expansion};
+                            Unit::temperature, Unit::specific_heat, Unit::thermal_expansion, Unit::mass};
   out << (markdown ? "## Units\n\nNumbers are SI. A number may carry a unit of its key's quantity, e.g. "
                      "`youngs_modulus: 72 GPa`, `spacing: 0.5 mm`, `density: 7.8 g/cm^3`:\n\n| quantity | SI | accepted |\n|---|---|---|\n"
                    : "units: numbers are SI; a number may carry a unit of its key's quantity (72 GPa, 0.5 mm):\n");

@@ -176,6 +176,46 @@ struct RigidWallSpec {
   WallContactKind contact = WallContactKind::penalty;
 };
 
+/// A pair of bodies whose short-range contact has Coulomb friction (contact/short_range.hpp).
+struct FrictionSpec {
+  SourcePos pos;
+  std::string first, second;  ///< body names (the same name twice: within that body)
+  double coefficient = 0;     ///< μ (-)
+};
+
+/// Short-range forces between points that are not bonded (never bonded, or their bond broke), within and between
+/// bodies: the Silling–Askari repulsion (contact/short_range.hpp). Absent: no short-range forces.
+struct ContactSpec {
+  SourcePos pos;
+  double stiffness_factor = 15;     ///< c_S = factor × c, c the softer block's micromodulus (-)
+  double distance_factor = 1.35;    ///< d_ij ≤ factor × (r_i + r_j), r the node radius (half the spacing) (-)
+  double reference_fraction = 0.9;  ///< d_ij ≤ fraction × |ξ_ij|, the reference distance (-)
+  double skin = 0.5;                ///< Verlet skin as a fraction of the largest node diameter (-)
+  std::vector<FrictionSpec> friction;
+};
+
+/// A rigid body's shape (contact/rigid_body.hpp); in 2D sphere and cylinder are discs, box a rectangle.
+enum class RigidShapeKind { sphere, cylinder, box, plane };
+/// fixed: at rest; prescribed: its centre moves by the displacement expressions of t; free: moved by the contact
+/// forces of the points, with its mass and initial velocity.
+enum class RigidMotionKind { fixed, prescribed, free };
+
+/// A rigid body that the points cannot enter (contact/rigid_body.hpp): penalty contact with every point inside it.
+struct RigidBodySpec {
+  std::string name;
+  SourcePos pos;
+  RigidShapeKind shape = RigidShapeKind::sphere;
+  Vec3 center;        ///< sphere: centre; cylinder: centre of the base; plane: a point of it (m)
+  Vec3 axis{0, 0, 1}; ///< cylinder: unit axis; plane: unit normal toward the bodies
+  double radius = 0, length = 0;  ///< sphere, cylinder (m)
+  Vec3 lo, hi;        ///< box: corners (m)
+  RigidMotionKind motion = RigidMotionKind::fixed;
+  std::optional<Expression> displacement[3];  ///< prescribed: displacement of the body (m) as a function of t
+  double mass = 0;    ///< free: mass (kg)
+  Vec3 velocity;      ///< free: initial velocity (m/s)
+  double stiffness_factor = 0.5;  ///< penalty stiffness as a fraction of a full family's (-)
+};
+
 /// A prescribed temperature field: the thermal strain α (T − T_ref) of the ordinary models and the WLF shift of
 /// the thermoviscoelastic one read it (loads/temperature.hpp).
 struct TemperatureSpec {
@@ -234,6 +274,8 @@ struct Problem {
   std::vector<BodyForceSpec> body_forces;
   std::vector<TractionSpec> tractions;
   std::vector<RigidWallSpec> rigid_walls;
+  std::vector<RigidBodySpec> rigid_bodies;
+  std::optional<ContactSpec> contact;  ///< short-range forces; none: points pass through each other
   std::optional<TemperatureSpec> temperature;  ///< none: no thermal strain, no WLF shift
   SolverSpec solver;
   PartitionMethod partition = PartitionMethod::rcb;  ///< decomposition.method

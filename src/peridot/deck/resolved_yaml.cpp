@@ -280,6 +280,64 @@ void emit_loads(YAML::Emitter& out, const Problem& p) {
   });
 }
 
+void emit_contact(YAML::Emitter& out, const Problem& p) {
+  emit_list(out, "rigid_bodies", p.rigid_bodies, [&](const RigidBodySpec& b) {
+    out << YAML::Key << "name" << YAML::Value << b.name;
+    const char* shapes[] = {"sphere", "cylinder", "box", "plane"};
+    out << YAML::Key << shapes[static_cast<int>(b.shape)] << YAML::Value << YAML::BeginMap;
+    switch (b.shape) {
+      case RigidShapeKind::sphere:
+      case RigidShapeKind::cylinder:
+        out << YAML::Key << "center" << YAML::Value;
+        emit_point(out, b.center);
+        if (b.shape == RigidShapeKind::cylinder) {
+          out << YAML::Key << "axis" << YAML::Value;
+          emit_point(out, b.axis);
+          out << YAML::Key << "length" << YAML::Value << number(b.length);
+        }
+        out << YAML::Key << "radius" << YAML::Value << number(b.radius);
+        break;
+      case RigidShapeKind::box:
+        out << YAML::Key << "min" << YAML::Value;
+        emit_point(out, b.lo);
+        out << YAML::Key << "max" << YAML::Value;
+        emit_point(out, b.hi);
+        break;
+      case RigidShapeKind::plane:
+        out << YAML::Key << "point" << YAML::Value;
+        emit_point(out, b.center);
+        out << YAML::Key << "normal" << YAML::Value;
+        emit_point(out, b.axis);
+        break;
+    }
+    out << YAML::EndMap;
+    if (b.motion == RigidMotionKind::prescribed) {
+      out << YAML::Key << "displacement" << YAML::Value << YAML::BeginMap;
+      emit_components(out, b.displacement);
+      out << YAML::EndMap;
+    } else if (b.motion == RigidMotionKind::free) {
+      out << YAML::Key << "mass" << YAML::Value << number(b.mass);
+      out << YAML::Key << "velocity" << YAML::Value;
+      emit_point(out, b.velocity);
+    }
+    out << YAML::Key << "stiffness_factor" << YAML::Value << number(b.stiffness_factor);
+  });
+  if (!p.contact) return;
+  const ContactSpec& c = *p.contact;
+  out << YAML::Key << "contact" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "stiffness_factor" << YAML::Value << number(c.stiffness_factor);
+  out << YAML::Key << "distance_factor" << YAML::Value << number(c.distance_factor);
+  out << YAML::Key << "reference_fraction" << YAML::Value << number(c.reference_fraction);
+  out << YAML::Key << "skin" << YAML::Value << number(c.skin);
+  emit_list(out, "friction", c.friction, [&](const FrictionSpec& f) {
+    out << YAML::Key << "bodies" << YAML::Value << YAML::Flow << YAML::BeginSeq << f.first;
+    if (f.second != f.first) out << f.second;
+    out << YAML::EndSeq;
+    out << YAML::Key << "coefficient" << YAML::Value << number(f.coefficient);
+  });
+  out << YAML::EndMap;
+}
+
 void emit_temperature(YAML::Emitter& out, const Problem& p) {
   if (!p.temperature) return;
   out << YAML::Key << "temperature" << YAML::Value << YAML::BeginMap;
@@ -334,6 +392,7 @@ std::string resolved_deck_yaml(const Problem& p) {
   emit_bodies(out, p);
   emit_precracks_and_node_sets(out, p);
   emit_loads(out, p);
+  emit_contact(out, p);
   emit_temperature(out, p);
   emit_solver_and_output(out, p);
   out << YAML::EndMap;

@@ -62,6 +62,7 @@ const std::vector<UnitInfo>& unit_table() {
       {Unit::temperature, "temperature", {{"K", 1.0}}},
       {Unit::specific_heat, "specific heat", {{"J/(kg K)", 1.0}, {"J/kg/K", 1.0}, {"kJ/(kg K)", 1e3}}},
       {Unit::thermal_expansion, "thermal expansion coefficient", {{"1/K", 1.0}}},
+      {Unit::mass, "mass", {{"kg", 1.0}, {"g", 1e-3}}},
   };
   return table;
 }
@@ -196,6 +197,10 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "body_forces", .type = VT::sequence, .description = "force per volume"},
                 {.key = "tractions", .type = VT::sequence, .description = "force per area, carried by a layer of points"},
                 {.key = "rigid_walls", .type = VT::sequence, .description = "rigid frictionless planes the points cannot cross"},
+                {.key = "rigid_bodies", .type = VT::sequence,
+                 .description = "rigid spheres, cylinders, boxes and planes: fixed, moved as prescribed, or free"},
+                {.key = "contact", .type = VT::mapping,
+                 .description = "short-range forces between points that are not bonded (fragments, crack faces, bodies)"},
                 {.key = "temperature", .type = VT::mapping, .description = "a prescribed temperature field: thermal strain, WLF shift"},
                 {.key = "solver", .type = VT::mapping, .description = "explicit dynamics or quasi-static relaxation", .required = true},
                 {.key = "decomposition", .type = VT::mapping, .description = "how a distributed run (mpirun) splits the points"},
@@ -328,6 +333,65 @@ std::vector<SectionSpec> make_sections() {
                                 "must lie on the plane at t = 0 (its nearest points half a spacing from it) and the wall must be "
                                 "at rest",
                  .choices = {"penalty", "symmetry"}}}});
+  s.push_back({"contact",
+               "short-range forces (Silling–Askari): two points that are not bonded (never bonded, or their bond broke), "
+               "of one body or of two, repel each other when their distance falls below d_ij = min(reference_fraction "
+               "× |ξ_ij|, distance_factor × (r_i + r_j)), r the node radius (half the spacing), with the pair force density "
+               "(c_S/δ)(d_ij − |y_j − y_i|) along the line between them, c_S = stiffness_factor × c and c/δ the softer "
+               "block's; optional Coulomb friction per pair of bodies",
+               {{.key = "stiffness_factor", .default_yaml = "15", .range = positive,
+                 .description = "c_S / c, c the block's micromodulus (15: Silling and Askari, LAMMPS)"},
+                {.key = "distance_factor", .default_yaml = "1.35", .range = positive,
+                 .description = "contact distance as a multiple of r_i + r_j, the spacing on a lattice (1.35: LAMMPS)"},
+                {.key = "reference_fraction", .default_yaml = "0.9", .range = {0, 1, true, false},
+                 .description = "the contact distance never exceeds this fraction of the pair's reference distance, so "
+                                "that neighbours at rest do not repel"},
+                {.key = "skin", .default_yaml = "0.5", .range = positive,
+                 .description = "Verlet skin as a fraction of the largest node diameter: the pair list holds every pair "
+                                "within d + skin and is rebuilt when a point has moved half the skin"},
+                {.key = "friction", .type = VT::sequence, .description = "Coulomb friction between pairs of bodies"}}});
+  s.push_back({"contact.friction[i]", "Coulomb friction between the points of two bodies (or within one): a force "
+               "μ |f_n| against their relative tangential velocity",
+               {{.key = "bodies", .type = VT::names, .description = "two body names, or one (within that body)", .required = true},
+                {.key = "coefficient", .range = non_negative, .description = "friction coefficient μ", .required = true}}});
+  s.push_back({"rigid_bodies[i]",
+               "a rigid body that the points cannot enter: penalty force density κ·(penetration) along the surface's "
+               "outward normal on every point inside it, κ = stiffness_factor × the Silling–Askari stiffness Σ V c/ξ "
+               "of a full family of the point's block. It is fixed; moves as prescribed (displacement); or is free "
+               "(mass, velocity), moved by the reaction of the points' contact forces. The history records its "
+               "position, velocity and contact force as body_<name>_x/_y/_z, _vx/_vy/_vz, _fx/_fy/_fz",
+               {{.key = "name", .type = VT::text, .description = "name of the body (history columns)", .required = true},
+                {.key = "sphere", .type = VT::mapping, .description = "see rigid_bodies[i].sphere", .required = true, .one_of = "shape"},
+                {.key = "cylinder", .type = VT::mapping, .description = "see rigid_bodies[i].cylinder", .required = true, .one_of = "shape",
+                 .dimension = 3},
+                {.key = "box", .type = VT::mapping, .description = "see rigid_bodies[i].box", .required = true, .one_of = "shape"},
+                {.key = "plane", .type = VT::mapping, .description = "see rigid_bodies[i].plane", .required = true, .one_of = "shape"},
+                {.key = "displacement", .type = VT::mapping,
+                 .description = "prescribed motion: the body's displacement, components as expressions of t (m)", .one_of = "motion"},
+                {.key = "mass", .type = VT::number, .unit = Unit::mass, .range = positive,
+                 .description = "a free body: its mass (kg)", .one_of = "motion"},
+                {.key = "velocity", .type = VT::point, .description = "a free body: its initial velocity (m/s)"},
+                {.key = "stiffness_factor", .default_yaml = "0.5", .range = positive,
+                 .description = "penalty stiffness as a fraction of a full family's; 0.5 keeps a surface point no stiffer "
+                                "than an interior one, so the stable time step holds"}}});
+  s.push_back({"rigid_bodies[i].sphere", "a ball (a disc in 2D)",
+               {{.key = "center", .type = VT::point, .description = "centre at t = 0 (m)", .required = true},
+                {.key = "radius", .unit = Unit::length, .range = positive, .description = "radius (m)", .required = true}}});
+  s.push_back({"rigid_bodies[i].cylinder", "a solid cylinder with flat ends (3D)",
+               {{.key = "center", .type = VT::point, .description = "centre of the base at t = 0 (m)", .required = true},
+                {.key = "axis", .type = VT::point, .default_yaml = "[0, 0, 1]", .description = "direction of the axis"},
+                {.key = "radius", .unit = Unit::length, .range = positive, .description = "radius (m)", .required = true},
+                {.key = "length", .unit = Unit::length, .range = positive, .description = "length along the axis (m)",
+                 .required = true}}});
+  s.push_back({"rigid_bodies[i].box", "an axis-aligned box (a rectangle in 2D)",
+               {{.key = "min", .type = VT::point, .description = "lowest corner at t = 0 (m)", .required = true},
+                {.key = "max", .type = VT::point, .description = "highest corner at t = 0 (m)", .required = true}}});
+  s.push_back({"rigid_bodies[i].plane", "a half-space: everything behind the plane is solid",
+               {{.key = "point", .type = VT::point, .description = "a point of the plane at t = 0 (m)", .required = true},
+                {.key = "normal", .type = VT::point, .description = "normal of the plane, toward the bodies (any length)",
+                 .required = true}}});
+  s.push_back({"rigid_bodies[i].displacement", "the prescribed displacement of the body (m), expressions of t",
+               component_keys(Unit::length, VT::expression)});
   s.push_back({"temperature",
                "a prescribed temperature field T(x, y, z, t): every point of a material with thermal_expansion α carries "
                "the free thermal stretch α (T − reference) in each of its bonds, and the thermoviscoelastic model's "

@@ -14,7 +14,7 @@ namespace peridot {
 /// Physical quantity of a number; each has an SI unit and a few accepted alternatives ("72 GPa").
 enum class Unit {
   none, length, area, time, pressure, density, energy_per_area, velocity, force_density, rate, temperature, specific_heat,
-  thermal_expansion
+  thermal_expansion, mass
 };
 
 enum class ValueType {

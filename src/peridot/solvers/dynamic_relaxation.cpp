@@ -90,6 +90,11 @@ void DynamicRelaxation::check(const Problem& p, DeckContext& ctx) {
   for (const RigidWallSpec& w : p.rigid_walls)
     if (w.speed != 0)
       ctx.error(w.pos, "rigid_walls." + w.name, "a moving wall is not supported with solver type 'relaxation'; give it speed 0");
+  for (const RigidBodySpec& b : p.rigid_bodies)
+    if (b.motion != RigidMotionKind::fixed)
+      ctx.error(b.pos, "rigid_bodies." + b.name,
+                "a moving or free rigid body is not supported with solver type 'relaxation'; remove its displacement "
+                "or mass (a fixed body)");
 }
 
 namespace {
@@ -192,7 +197,7 @@ std::string DynamicRelaxation::unsupported_fragment() {
   const State& state = sim_.state();
   const Discretization& disc = sim_.discretization();
   const auto& kind = sim_.loads().dof_kinds();
-  const bool body = sim_.loads().has_body_force(), walls = sim_.has_walls();
+  const bool body = sim_.loads().has_body_force(), walls = sim_.has_contact();
   std::map<double, FragmentSum> local;
   for (std::size_t i = 0; i < sim_.num_owned(); ++i) {
     FragmentSum& f = local[state.fragment[i]];
@@ -200,7 +205,7 @@ std::string DynamicRelaxation::unsupported_fragment() {
     f.points += 1;
     for (int d = 0; d < 3; ++d) {
       const std::size_t k = 3 * i + static_cast<std::size_t>(d);
-      if (kind[k] != DofKind::free || (walls && sim_.wall_force().data()[k] != 0)) f.supported[d] = 1;
+      if (kind[k] != DofKind::free || (walls && sim_.contact_force().data()[k] != 0)) f.supported[d] = 1;
       if (!body) continue;
       f.force[d] += state.body_force.data()[k] * disc.volume[i];
       f.magnitude += std::abs(state.body_force.data()[k]) * disc.volume[i];
@@ -284,7 +289,7 @@ void DynamicRelaxation::evaluate_residual_force(std::vector<double>& F) {
 
 double DynamicRelaxation::applied_force(std::size_t k) const {
   const double b = sim_.loads().has_body_force() ? sim_.state().body_force.data()[k] : 0.0;
-  return sim_.has_walls() ? b + sim_.wall_force().data()[k] : b;
+  return sim_.has_contact() ? b + sim_.contact_force().data()[k] : b;
 }
 
 void DynamicRelaxation::set_step_velocity() {
@@ -428,7 +433,7 @@ void DynamicRelaxation::solve_and_commit(double dt) {
   // The forces of the last accepted state, for the external work (trapezoidal over the change).
   const VectorField force_before = state.force;
   const VectorField& body_before = accepted_body_force_;  // set_loads may have changed state.body_force
-  const VectorField wall_before = sim_.has_walls() ? sim_.wall_force() : VectorField();
+  const VectorField contact_before = sim_.has_contact() ? sim_.contact_force() : VectorField();
   solve_dt_ = dt;
   // Relax; break what is over-stretched at equilibrium; relax again (relax() restarts the damped motion
   // from rest) until nothing breaks, or, breaking once per step, once.
@@ -456,7 +461,7 @@ void DynamicRelaxation::solve_and_commit(double dt) {
   const double* u = state.u.data();
   const double* u0 = committed_u_.data();
   const bool body = sim_.loads().has_body_force();
-  const bool walls = sim_.has_walls();
+  const bool walls = sim_.has_contact();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < owned; ++i)
     for (std::size_t q = 3 * i; q < 3 * i + 3; ++q) {
@@ -466,7 +471,7 @@ void DynamicRelaxation::solve_and_commit(double dt) {
       } else {
         double applied = 0;
         if (body) applied += body_before.data()[q] + state.body_force.data()[q];
-        if (walls) applied += wall_before.data()[q] + sim_.wall_force().data()[q];
+        if (walls) applied += contact_before.data()[q] + sim_.contact_force().data()[q];
         work[i] += 0.5 * applied * volume[i] * du;
       }
     }

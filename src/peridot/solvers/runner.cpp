@@ -133,9 +133,18 @@ class History {
                                         "momentum_x", "momentum_y", "momentum_z", "max_damage", "dissipated_energy",
                                         "fragments"};
     if (sim.has_correspondence()) columns.push_back("hourglass_work");
+    if (sim.any_damage()) columns.push_back("broken_fraction");
     for (const std::string& name : sim.integrator().history_columns()) columns.push_back(name);
-    for (const RigidWall& wall : sim.walls().walls())
-      for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("wall_" + wall.name + axis);
+    if (sim.has_contact() && (!problem.rigid_bodies.empty() || problem.contact)) columns.push_back("contact_energy");
+    for (std::size_t k = 0; k < sim.rigid_bodies().size(); ++k) {
+      const RigidBody& body = sim.rigid_bodies()[k];
+      if (body.wall) {
+        for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("wall_" + body.name + axis);
+        continue;
+      }
+      for (const char* what : {"_x", "_y", "_z", "_vx", "_vy", "_vz", "_fx", "_fy", "_fz"})
+        columns.push_back("body_" + body.name + what);
+    }
     for (const std::string& name : problem.output.reaction_sets) {
       for (const NodeSet& set : sim.output_node_sets())
         if (set.name == name) reaction_sets_.push_back(&set);
@@ -155,8 +164,19 @@ class History {
                                t.external_work, t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage,
                                t.dissipated_energy, static_cast<double>(t.fragments)};
     if (sim_.has_correspondence()) row.push_back(t.hourglass_work);
+    if (sim_.any_damage()) row.push_back(t.broken_fraction);
     for (double value : sim_.integrator().history_values()) row.push_back(value);
-    for (const Vec3& force : t.wall_force) row.insert(row.end(), {force.x, force.y, force.z});
+    const Problem& problem = sim_.problem();
+    if (sim_.has_contact() && (!problem.rigid_bodies.empty() || problem.contact)) row.push_back(t.contact_energy);
+    for (std::size_t k = 0; k < t.rigid_force.size(); ++k) {
+      const RigidBody& body = sim_.rigid_bodies()[k];
+      const Vec3& force = t.rigid_force[k];
+      if (!body.wall) {
+        const Vec3 at = body.center + body.offset;
+        row.insert(row.end(), {at.x, at.y, at.z, body.velocity.x, body.velocity.y, body.velocity.z});
+      }
+      row.insert(row.end(), {force.x, force.y, force.z});
+    }
     for (const NodeSet* set : reaction_sets_) {
       Vec3 r = sim_.reaction(*set);
       row.insert(row.end(), {r.x, r.y, r.z});

@@ -94,7 +94,20 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     refused = e;  // found from this rank's bonds only: every rank must hear of it
   }
   agree_on_input_error(refused);
-  walls_ = std::make_unique<RigidWalls>(problem_, model_);
+  bodies_ = std::make_unique<RigidBodies>(problem_, model_);
+  if (problem_.contact) {
+    const Discretization& all = comm_.serial() ? disc_ : global_disc_;
+    short_range_ = std::make_unique<ShortRangeContact>(*problem_.contact, problem_, all, model_.params, model_.any_damage());
+    if (!comm_.serial()) {
+      const std::vector<std::uint32_t> counts = comm_.all_gather(std::vector<std::uint32_t>{static_cast<std::uint32_t>(owned_)});
+      const std::vector<std::uint32_t> everyone = comm_.all_gather(
+          std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() + static_cast<std::ptrdiff_t>(owned_)));
+      owner_.assign(all.num_points(), 0);
+      std::size_t k = 0;
+      for (std::size_t r = 0; r < counts.size(); ++r)
+        for (std::uint32_t c = 0; c < counts[r]; ++c) owner_[everyone[k++]] = static_cast<int>(r);
+    }
+  }
   if (problem_.temperature) temperature_ = std::make_unique<TemperatureField>(*problem_.temperature, disc_);
 
   any_dilatation_ = model_.any_dilatation();
@@ -188,7 +201,7 @@ void Simulation::evaluate(double dt, bool break_bonds) {
   }
   compute_internal_force(model_, state_.u, state_.dilatation, state_.force, fail && fail_in_force_pass,
                          &state_.history);
-  if (!walls_->empty()) walls_->compute(state_.u, state_.time, wall_force_);
+  compute_contact();
   correspondence_failed_ = false;
   if (!has_correspondence()) return;
   try {
@@ -197,6 +210,72 @@ void Simulation::evaluate(double dt, bool break_bonds) {
     correspondence_failed_ = true;
     throw NumericalError(fmt::format("at step {}, time {:.6g} s: {}", state_.step, state_.time, e.what()));
   }
+}
+
+void Simulation::compute_contact() {
+  if (!has_contact()) return;
+  const std::size_t n = disc_.num_points();
+  if (contact_force_.size() != n) contact_force_.resize(n);
+  std::fill(contact_force_.data(), contact_force_.data() + 3 * n, 0.0);
+  if (!bodies_->empty()) {
+    bodies_->move_to(state_.time);
+    bodies_->compute(disc_, owned_, state_.u, contact_force_);
+    // A free body moves by the points' reaction, summed exactly: the same bits on every rank and any
+    // rank count.
+    for (std::size_t k = 0; k < bodies_->size(); ++k) {
+      if ((*bodies_)[k].motion != RigidMotionKind::free) continue;
+      const std::vector<BodyContact>& contacts = bodies_->contacts(k);
+      Vec3 force;
+      for (int d = 0; d < 3; ++d)
+        force[d] = -reproducible_sum(comm_, contacts.size(), [&](std::size_t c) {
+          return contacts[c].force_density[d] * disc_.volume[contacts[c].point];
+        });
+      bodies_->set_force(k, force);
+    }
+  }
+  if (!short_range_) return;
+  bool build = short_range_->needs_build(state_.u, owned_);
+  if (!comm_.serial()) build = comm_.any(build);
+  const bool friction = short_range_->has_friction();
+  if (build) {
+    // The positions of every point (every rank holds the whole discretization), for the search.
+    const Discretization& all = comm_.serial() ? disc_ : global_disc_;
+    std::vector<double> y(3 * all.num_points());
+    std::vector<double> mine(3 * owned_);
+    for (std::size_t i = 0; i < owned_; ++i)
+      for (int d = 0; d < 3; ++d) mine[3 * i + static_cast<std::size_t>(d)] = disc_.x(i, d) + state_.u(i, d);
+    std::vector<std::uint32_t> owned_global(owned_);
+    for (std::size_t i = 0; i < owned_; ++i) owned_global[i] = comm_.serial() ? static_cast<std::uint32_t>(i) : global_index_[i];
+    if (comm_.serial()) {
+      y = std::move(mine);
+    } else {
+      const std::vector<double> gathered = comm_.all_gather(mine);
+      const std::vector<std::uint32_t> index = comm_.all_gather(owned_global);
+      for (std::size_t k = 0; k < index.size(); ++k)
+        for (std::size_t d = 0; d < 3; ++d) y[3 * index[k] + d] = gathered[3 * k + d];
+    }
+    short_range_->build(y, owned_global, owner_, bonds_, global_index_, state_.u);
+    if (!comm_.serial()) {
+      std::vector<int> count = short_range_->remote_count();
+      count.resize(static_cast<std::size_t>(comm_.size()), 0);
+      const auto first = global_index_.begin(), last = global_index_.begin() + static_cast<std::ptrdiff_t>(owned_);
+      contact_halo_ = Halo::serve(comm_, owned_, short_range_->remote(), count, 1, [&](const std::uint32_t* g) {
+        return static_cast<std::uint32_t>(std::lower_bound(first, last, *g) - first);
+      });
+    }
+    const std::size_t slots = owned_ + short_range_->remote().size();
+    contact_y_.assign(3 * slots, 0.0);
+    if (friction) contact_v_.assign(3 * slots, 0.0);
+  }
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < owned_; ++i)
+    for (int d = 0; d < 3; ++d) contact_y_[3 * i + static_cast<std::size_t>(d)] = disc_.x(i, d) + state_.u(i, d);
+  contact_halo_.exchange(contact_y_.data(), 3);
+  if (friction) {
+    std::copy(state_.v.data(), state_.v.data() + 3 * owned_, contact_v_.data());
+    contact_halo_.exchange(contact_v_.data(), 3);
+  }
+  short_range_->compute(contact_y_.data(), friction ? contact_v_.data() : nullptr, bonds_.broken, contact_force_);
 }
 
 void Simulation::commit(double dt) {
@@ -298,6 +377,18 @@ void Simulation::gather_outputs(bool fields, bool totals) {
   if (totals) {
     compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_, &state_.history);
     if (has_correspondence()) correspondence_->strain_energy_density(energy_density_);
+    if (any_damage_) {
+      broken_bonds_ = comm_.sum(static_cast<std::uint64_t>(std::count(bonds_.broken.begin(), bonds_.broken.end(), std::uint8_t{1})));
+      if (all_bonds_ == 0) all_bonds_ = global_bond_count();
+    }
+    if (has_contact()) {
+      contact_energy_.assign(disc_.num_points(), 0.0);
+      for (std::size_t i = 0; i < owned_; ++i) {
+        if (!bodies_->empty()) contact_energy_[i] += bodies_->point_energy(disc_, state_.u, i);
+        if (short_range_ && !contact_y_.empty())
+          contact_energy_[i] += short_range_->point_energy_density(i, contact_y_.data(), bonds_.broken) * disc_.volume[i];
+      }
+    }
     symmetry_force_density_.resize(problem_.rigid_walls.size());
     std::vector<double> local;
     for (std::size_t w = 0; w < problem_.rigid_walls.size(); ++w) {
@@ -327,6 +418,7 @@ void Simulation::gather_outputs(bool fields, bool totals) {
   }
   gather_field(work_.data(), 1, global_work_);
   if (totals) gather_field(energy_density_.data(), 1, global_energy_density_);
+  if (totals && has_contact()) gather_field(contact_energy_.data(), 1, global_contact_energy_);
   if (has_correspondence()) gather_field(correspondence_->point_hourglass_work().data(), 1, global_hourglass_work_);
   if (fields)
     for (auto& [name, values] : state_.point_outputs) gather_field(values.data(), 1, g.point_outputs[name]);
@@ -369,18 +461,23 @@ Totals Simulation::output_totals() const {
   for (int d = 0; d < 3; ++d)
     totals.momentum[d] = deterministic_sum(n, [&](std::size_t i) { return density(i) * disc.volume[i] * v[3 * i + d]; });
   for (std::size_t i = 0; i < n; ++i) totals.max_damage = std::max(totals.max_damage, s.damage[i]);
+  if (all_bonds_ > 0) totals.broken_fraction = static_cast<double>(broken_bonds_) / static_cast<double>(all_bonds_);
   // A fragment is named by the smallest input id of its points: count the points that name their own.
   for (std::size_t i = 0; i < n; ++i)
     if (s.fragment[i] == static_cast<double>(disc.input_id.empty() ? i : disc.input_id[i])) ++totals.fragments;
   totals.external_work = deterministic_sum(n, [&](std::size_t i) { return work[i]; });
-  for (std::size_t w = 0; w < walls_->walls().size(); ++w) {
-    Vec3 force = walls_->force_on_wall(w, disc, s.u, s.time);
+  if (has_contact()) {
+    const std::vector<double>& energy = comm_.serial() ? contact_energy_ : global_contact_energy_;
+    totals.contact_energy = deterministic_sum(n, [&](std::size_t i) { return energy[i]; });
+  }
+  for (std::size_t w = 0; w < bodies_->size(); ++w) {
+    Vec3 force = bodies_->force_on(w, disc, s.u);
     if (w < symmetry_force_density_.size() && !symmetry_force_density_[w].empty()) {  // the mirror bonds' part (contact: symmetry)
       const std::vector<double>& f = symmetry_force_density_[w];
       for (int d = 0; d < 3; ++d)
         force[d] -= deterministic_sum(n, [&](std::size_t i) { return f[3 * i + d] * disc.volume[i]; });
     }
-    totals.wall_force.push_back(force);
+    totals.rigid_force.push_back(force);
   }
   return totals;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // A problem set up and ready to solve: points, bonds, per-block materials, loads and the state, and the
 // force evaluator every solver calls:
-//   evaluate(Δt, break_bonds): internal force density (and the rigid walls' penalty force) at the current
+//   evaluate(Δt, break_bonds): internal force density (and the contact force density) at the current
 //       u, from the committed history plus a trial update over Δt; nothing committed changes, except that
 //       with break_bonds the bonds over their critical stretch at this u are marked broken first.
 //   commit(Δt): the last evaluation is accepted; every history (plastic and back extensions,
@@ -23,7 +23,9 @@
 #include <string>
 #include <vector>
 
+#include "peridot/contact/rigid_body.hpp"
 #include "peridot/contact/rigid_wall.hpp"
+#include "peridot/contact/short_range.hpp"
 #include "peridot/core/deterministic_sum.hpp"
 #include "peridot/deck/problem.hpp"
 #include "peridot/geometry/discretize.hpp"
@@ -46,14 +48,16 @@ namespace peridot {
 /// Global quantities of one instant; sums taken in a fixed order (the global point order), so identical
 /// for any thread and rank count.
 struct Totals {
-  double external_work = 0;   ///< J, work of supports, body forces and walls since t = 0
-  std::vector<Vec3> wall_force;  ///< N, the force on each rigid wall
+  double external_work = 0;   ///< J, work of supports, body forces and contact forces since t = 0
+  std::vector<Vec3> rigid_force;  ///< N, the points' contact force on each rigid wall and body
+  double contact_energy = 0;  ///< J, stored in the contact penalties (rigid bodies and short-range pairs)
   double kinetic_energy = 0;  ///< J
   double strain_energy = 0;   ///< J, stored (elastic) energy
   double dissipated_energy = 0;  ///< J, plastic work or viscous dissipation since t = 0
   double hourglass_work = 0;  ///< J, work of the correspondence hourglass forces since t = 0 (stored-energy sign)
   Vec3 momentum;              ///< kg·m/s
   double max_damage = 0;
+  double broken_fraction = 0;  ///< broken bonds / all bonds at t = 0
   std::size_t fragments = 0;  ///< connected sets of points through intact bonds
 };
 
@@ -101,8 +105,8 @@ class Simulation {
   // -- what integrators call ------------------------------------------------------------------------
   /// State at t = 0: initial conditions, ghosts, body force at t = 0 (no force yet).
   void apply_initial_state();
-  /// Internal force density (state().force) and, with rigid walls, their penalty force density
-  /// (wall_force()) at the current state().u, with the history updated by trial over Δt (correspondence
+  /// Internal force density (state().force) and, with rigid bodies or short-range contact, the contact
+  /// force density (contact_force()) at the current state().u, with the history updated by trial over Δt (correspondence
   /// blocks: the stress over Δt from the committed one, with state().v as the velocity of the step).
   /// Changes nothing committed, so it may run any number of times for one step, except that with
   /// break_bonds the bonds over their critical stretch are marked broken first (velocity Verlet checks
@@ -122,11 +126,12 @@ class Simulation {
   /// The loads of the deck (initial and boundary conditions, body forces).
   Loads& loads() { return *loads_; }
   const Loads& loads() const { return *loads_; }
-  /// Penalty force density of the rigid walls at the last evaluate() (N/m³); meaningless without walls.
-  const VectorField& wall_force() const { return wall_force_; }
-  bool has_walls() const { return !walls_->empty(); }
-  /// Work done on each owned point by the supports, body forces and walls since t = 0 (J); integrators
-  /// add to it.
+  /// Contact force density (rigid walls and bodies, short-range pairs) at the last evaluate() (N/m³);
+  /// meaningless without contact.
+  const VectorField& contact_force() const { return contact_force_; }
+  bool has_contact() const { return !bodies_->empty() || short_range_; }
+  /// Work done on each owned point by the supports, body forces and contact forces since t = 0 (J);
+  /// integrators add to it.
   std::vector<double>& external_work() { return work_; }
   /// Refreshes the ghosts' copy of a vector field (u, v) from their owners. Collective.
   void exchange_ghosts(VectorField& field) { halo_.exchange(field.data(), 3); }
@@ -141,8 +146,12 @@ class Simulation {
   /// uses it.
   const EnergyFailure* energy_failure() const { return energy_failure_.get(); }
 
-  /// The rigid walls of the deck (contact/rigid_wall.hpp); empty() when none.
-  const RigidWalls& walls() const { return *walls_; }
+  /// The rigid walls (first) and bodies of the deck (contact/rigid_body.hpp); empty() when none. The
+  /// integrators move the free ones.
+  const RigidBodies& rigid_bodies() const { return *bodies_; }
+  RigidBodies& rigid_bodies() { return *bodies_; }
+  /// The short-range contact (contact/short_range.hpp); null without a contact section.
+  const ShortRangeContact* short_range() const { return short_range_.get(); }
 
   /// Whether some block uses the correspondence model (its history has an hourglass_work column).
   bool has_correspondence() const { return correspondence_ && !correspondence_->empty(); }
@@ -188,6 +197,9 @@ class Simulation {
   void agree_on_input_error(const std::optional<InputError>& error) const;
   /// Copies the owners' per-bond history into the partner-bond slots (after every commit).
   void exchange_partner_bonds();
+  /// The contact force density at the current u: rigid bodies (and the free ones' resultants), short-range
+  /// pairs (rebuilding their list when a point has moved half the skin). Collective.
+  void compute_contact();
 
   Problem problem_;
   Communicator comm_;
@@ -215,11 +227,20 @@ class Simulation {
   ModelContext model_;
   std::unique_ptr<Loads> loads_;
   std::unique_ptr<CorrespondenceBlocks> correspondence_;
-  std::unique_ptr<RigidWalls> walls_;
+  std::unique_ptr<RigidBodies> bodies_;
+  std::unique_ptr<ShortRangeContact> short_range_;
+  /// Short-range contact: positions (and with friction velocities) of its slots, the owned points then
+  /// the remote partners, which contact_halo_ copies from their owners; distributed, every point's owner
+  /// rank and the owned points' global indices, rank after rank.
+  std::vector<double> contact_y_, contact_v_;
+  Halo contact_halo_;
+  std::vector<int> owner_;
+  std::vector<double> contact_energy_, global_contact_energy_;  ///< J per point, for the totals
+  std::uint64_t broken_bonds_ = 0, all_bonds_ = 0;  ///< directed, all ranks, at the last gather_outputs(…, true)
   std::unique_ptr<EnergyFailure> energy_failure_;  ///< null unless a block breaks bonds by their work
   std::unique_ptr<TemperatureField> temperature_;  ///< the deck's temperature field; null without one
   double temperature_time_ = std::numeric_limits<double>::quiet_NaN();  ///< the time model_.temperature is at
-  VectorField wall_force_;  ///< penalty force density of the walls (N/m³), at the time of the last force
+  VectorField contact_force_;  ///< contact force density (N/m³), at the time of the last force
   State state_;
   std::vector<double> energy_density_;
   double stable_dt_ = 0, dt_ = 0;

@@ -63,13 +63,14 @@ void VelocityVerlet::initialize() {
 }
 
 void VelocityVerlet::kick(double half_dt) {
+  sim_.rigid_bodies().kick(half_dt);  // free bodies, by the points' reaction at the last evaluation
   const ModelContext& model = sim_.model();
   State& state = sim_.state();
   const auto& kind = sim_.loads().dof_kinds();
   double* v = state.v.data();
   const double* f = state.force.data();
   const double* b = state.body_force.data();
-  const double* c = sim_.has_walls() ? sim_.wall_force().data() : nullptr;
+  const double* c = sim_.has_contact() ? sim_.contact_force().data() : nullptr;
   for (std::size_t block = 0; block < model.ranges.size(); ++block) {
     const BlockRange range = model.ranges[block];
     const double scale = half_dt / model.params[block].density;
@@ -106,7 +107,7 @@ void VelocityVerlet::advance() {
     const double* v = state.v.data();  // v^{n+½}: Δu = Δt v^{n+½}
     const double* f = state.force.data();
     const double* b = state.body_force.data();
-    const double* c = sim_.has_walls() ? sim_.wall_force().data() : nullptr;
+    const double* c = sim_.has_contact() ? sim_.contact_force().data() : nullptr;
     for (std::uint64_t k : prescribed) work[k / 3] -= 0.5 * f[k] * volume[k / 3] * dt * v[k];
     const bool body_force = loads.has_body_force();
     if (!body_force && !c) return;
@@ -125,6 +126,7 @@ void VelocityVerlet::advance() {
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < dofs; ++k)
     if (kind[k] != DofKind::displacement) u[k] += dt * v[k];
+  sim_.rigid_bodies().drift(dt);
   loads.apply_displacement_conditions(t + dt, dt, state.u, state.v);
   sim_.exchange_ghosts(state.u);
   if (sim_.has_correspondence()) sim_.exchange_ghosts(state.v);  // Ḟ reads the partners' v^{n+½}

@@ -1,0 +1,241 @@
+// Short-range contact between points that are not bonded (short_range.hpp).
+#include "peridot/contact/short_range.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "peridot/core/error.hpp"
+
+namespace peridot {
+
+namespace {
+
+/// A cell of the search grid as one integer: 21 bits per coordinate (offset so that negatives fit).
+std::uint64_t cell_key(std::int64_t ix, std::int64_t iy, std::int64_t iz) {
+  constexpr std::int64_t offset = std::int64_t{1} << 20, mask = (std::int64_t{1} << 21) - 1;
+  return (static_cast<std::uint64_t>((ix + offset) & mask) << 42) | (static_cast<std::uint64_t>((iy + offset) & mask) << 21) |
+         static_cast<std::uint64_t>((iz + offset) & mask);
+}
+
+}  // namespace
+
+ShortRangeContact::ShortRangeContact(const ContactSpec& spec, const Problem& problem, const Discretization& all,
+                                     const std::vector<MaterialParams>& params, bool damage)
+    : blocks_(params.size()),
+      all_(&all),
+      distance_factor_(spec.distance_factor),
+      reference_fraction_(spec.reference_fraction),
+      damage_(damage) {
+  // k_ij from the softer of the two blocks, so that contact never stiffens a point beyond what its own
+  // block's stable time step allows for.
+  stiffness_.resize(blocks_ * blocks_);
+  for (std::size_t a = 0; a < blocks_; ++a)
+    for (std::size_t b = 0; b < blocks_; ++b)
+      stiffness_[a * blocks_ + b] = spec.stiffness_factor * std::min(params[a].stable_micromodulus / params[a].horizon,
+                                                                     params[b].stable_micromodulus / params[b].horizon);
+  if (!spec.friction.empty()) {
+    friction_.assign(blocks_ * blocks_, 0.0);
+    auto block_of = [&](const std::string& name) {
+      for (std::size_t k = 0; k < problem.bodies.size(); ++k)
+        if (problem.bodies[k].name == name) return k;
+      return blocks_;
+    };
+    for (const FrictionSpec& f : spec.friction) {
+      const std::size_t a = block_of(f.first), b = block_of(f.second);
+      if (a == blocks_ || b == blocks_) continue;  // the deck reports unknown bodies
+      friction_[a * blocks_ + b] = friction_[b * blocks_ + a] = f.coefficient;
+    }
+  }
+  const double section = problem.cross_section();
+  const int dimension = problem.dimension;
+  double largest = 0;
+  radius_.resize(all.num_points());
+  for (std::size_t i = 0; i < all.num_points(); ++i) {
+    const double cell = all.volume[i] / section;  // Δx^n
+    radius_[i] = 0.5 * (dimension == 3 ? std::cbrt(cell) : dimension == 2 ? std::sqrt(cell) : cell);
+    largest = std::max(largest, radius_[i]);
+  }
+  skin_ = spec.skin * 2 * largest;
+  cutoff_ = distance_factor_ * 2 * largest + skin_;
+}
+
+bool ShortRangeContact::needs_build(const VectorField& u, std::size_t owned) const {
+  if (builds_ == 0 || owned != owned_) return true;
+  const double limit = 0.25 * skin_ * skin_;
+  const double* a = u.data();
+  const double* b = u_built_.data();
+  bool moved = false;
+#pragma omp parallel for schedule(static) reduction(|| : moved)
+  for (std::size_t i = 0; i < owned; ++i) {
+    const double dx = a[3 * i] - b[3 * i], dy = a[3 * i + 1] - b[3 * i + 1], dz = a[3 * i + 2] - b[3 * i + 2];
+    moved = moved || dx * dx + dy * dy + dz * dz > limit;
+  }
+  return moved;
+}
+
+void ShortRangeContact::build(const std::vector<double>& y, const std::vector<std::uint32_t>& owned_global,
+                              const std::vector<int>& owner, const BondList& bonds,
+                              const std::vector<std::uint32_t>& local_global, const VectorField& u) {
+  const Discretization& all = *all_;
+  const std::size_t n = all.num_points();
+  owned_ = owned_global.size();
+  ++builds_;
+  u_built_.resize(owned_);
+  std::copy(u.data(), u.data() + 3 * owned_, u_built_.data());
+
+  // Cells of size ≥ the largest d_ij + s, sorted by key: a point's candidates are in the 27 cells around it.
+  const double h = cutoff_;
+  std::vector<std::uint64_t> key(n);
+  auto cell_of = [&](std::size_t i, int d) { return static_cast<std::int64_t>(std::floor(y[3 * i + static_cast<std::size_t>(d)] / h)); };
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) key[i] = cell_key(cell_of(i, 0), cell_of(i, 1), cell_of(i, 2));
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+  std::vector<std::uint64_t> sorted_keys(n);
+  for (std::size_t k = 0; k < n; ++k) sorted_keys[k] = key[order[k]];
+
+  // Which global points are owned here, and at which slot.
+  std::vector<std::uint32_t> slot_of(n, no_bond);
+  for (std::size_t i = 0; i < owned_; ++i) slot_of[owned_global[i]] = static_cast<std::uint32_t>(i);
+
+  // Pairs per owned point (global partner indices first), in parallel, then flattened in point order.
+  struct Pair {
+    std::uint32_t global, bond;
+    double distance, coefficient, mu;
+  };
+  std::vector<std::vector<Pair>> found(owned_);
+  const bool identity = local_global.empty();
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < owned_; ++i) {
+    const std::uint32_t gi = owned_global[i];
+    const Vec3 yi{y[3 * gi], y[3 * gi + 1], y[3 * gi + 2]};
+    const Vec3 xi = all.x.get(gi);
+    const std::size_t bi = static_cast<std::size_t>(all.block[gi]);
+    const std::int64_t cx = cell_of(gi, 0), cy = cell_of(gi, 1), cz = cell_of(gi, 2);
+    const std::uint64_t begin = bonds.offsets[i], end = bonds.offsets[i + 1];
+    std::vector<Pair>& mine = found[i];
+    for (std::int64_t ox = -1; ox <= 1; ++ox)
+      for (std::int64_t oy = -1; oy <= 1; ++oy)
+        for (std::int64_t oz = -1; oz <= 1; ++oz) {
+          const std::uint64_t want = cell_key(cx + ox, cy + oy, cz + oz);
+          auto [first, last] = std::equal_range(sorted_keys.begin(), sorted_keys.end(), want);
+          for (auto it = first; it != last; ++it) {
+            const std::uint32_t gj = order[static_cast<std::size_t>(it - sorted_keys.begin())];
+            if (gj == gi) continue;
+            const double dx = y[3 * gj] - yi.x, dy = y[3 * gj + 1] - yi.y, dz = y[3 * gj + 2] - yi.z;
+            const double reference = norm(all.x.get(gj) - xi);
+            const double d = std::min(reference_fraction_ * reference, distance_factor_ * (radius_[gi] + radius_[gj]));
+            const double reach = d + skin_;
+            if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
+            // The bond i → j, if any: the family is in increasing global index.
+            std::uint32_t bond = no_bond;
+            std::uint64_t lo = begin, hi = end;
+            while (lo < hi) {
+              const std::uint64_t mid = lo + (hi - lo) / 2;
+              const std::uint32_t g = identity ? bonds.neighbors[mid] : local_global[bonds.neighbors[mid]];
+              if (g < gj) lo = mid + 1;
+              else hi = mid;
+            }
+            if (lo < end && (identity ? bonds.neighbors[lo] : local_global[bonds.neighbors[lo]]) == gj) {
+              if (!damage_) continue;  // a bond that cannot break: never in contact
+              bond = static_cast<std::uint32_t>(lo);
+            }
+            const std::size_t bj = static_cast<std::size_t>(all.block[gj]);
+            mine.push_back({gj, bond, d, stiffness_[bi * blocks_ + bj] * all.volume[gj],
+                            friction_.empty() ? 0.0 : friction_[bi * blocks_ + bj]});
+          }
+        }
+    std::sort(mine.begin(), mine.end(), [](const Pair& a, const Pair& b) { return a.global < b.global; });
+  }
+
+  // Remote partners: grouped by owner rank, increasing global index within a rank.
+  remote_.clear();
+  const int ranks = owner.empty() ? 1 : 1 + *std::max_element(owner.begin(), owner.end());
+  remote_count_.assign(static_cast<std::size_t>(ranks), 0);
+  for (const std::vector<Pair>& pairs : found)
+    for (const Pair& p : pairs)
+      if (slot_of[p.global] == no_bond) remote_.push_back(p.global);
+  std::sort(remote_.begin(), remote_.end());
+  remote_.erase(std::unique(remote_.begin(), remote_.end()), remote_.end());
+  std::sort(remote_.begin(), remote_.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return owner[a] != owner[b] ? owner[a] < owner[b] : a < b;
+  });
+  for (std::size_t k = 0; k < remote_.size(); ++k) {
+    slot_of[remote_[k]] = static_cast<std::uint32_t>(owned_ + k);
+    ++remote_count_[static_cast<std::size_t>(owner[remote_[k]])];
+  }
+
+  offsets_.assign(owned_ + 1, 0);
+  for (std::size_t i = 0; i < owned_; ++i) offsets_[i + 1] = offsets_[i] + found[i].size();
+  const std::size_t total = offsets_[owned_];
+  PERIDOT_REQUIRE(bonds.num_bonds() < no_bond, "too many bonds on one rank for the contact list's bond indices");
+  partner_.resize(total);
+  bond_.resize(total);
+  distance_.resize(total);
+  coefficient_.resize(total);
+  mu_.resize(friction_.empty() ? 0 : total);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < owned_; ++i) {
+    std::uint64_t k = offsets_[i];
+    for (const Pair& p : found[i]) {
+      partner_[k] = slot_of[p.global];
+      bond_[k] = p.bond;
+      distance_[k] = p.distance;
+      coefficient_[k] = p.coefficient;
+      if (!mu_.empty()) mu_[k] = p.mu;
+      ++k;
+    }
+  }
+}
+
+void ShortRangeContact::compute(const double* y, const double* v, const std::vector<std::uint8_t>& broken,
+                                VectorField& b) const {
+  double* out = b.data();
+  const bool friction = !mu_.empty() && v != nullptr;
+#pragma omp parallel for schedule(dynamic, 512)
+  for (std::size_t i = 0; i < owned_; ++i) {
+    double fx = 0, fy = 0, fz = 0;
+    const double xi = y[3 * i], yi = y[3 * i + 1], zi = y[3 * i + 2];
+    for (std::uint64_t k = offsets_[i]; k < offsets_[i + 1]; ++k) {
+      const std::uint32_t bond = bond_[k];
+      if (bond != no_bond && broken[bond] == 0) continue;
+      const std::size_t j = partner_[k];
+      const double dx = y[3 * j] - xi, dy = y[3 * j + 1] - yi, dz = y[3 * j + 2] - zi;
+      const double r2 = dx * dx + dy * dy + dz * dz, d = distance_[k];
+      if (r2 >= d * d || r2 == 0) continue;
+      const double r = std::sqrt(r2);
+      const double push = coefficient_[k] * (d - r);  // |b| (N/m³)
+      const double s = push / r;
+      fx -= s * dx, fy -= s * dy, fz -= s * dz;
+      if (!friction || mu_[k] == 0) continue;
+      // The tangential part of v_j − v_i: i is dragged along with j.
+      const double ex = dx / r, ey = dy / r, ez = dz / r;
+      double wx = v[3 * j] - v[3 * i], wy = v[3 * j + 1] - v[3 * i + 1], wz = v[3 * j + 2] - v[3 * i + 2];
+      const double normal = wx * ex + wy * ey + wz * ez;
+      wx -= normal * ex, wy -= normal * ey, wz -= normal * ez;
+      const double sliding = std::sqrt(wx * wx + wy * wy + wz * wz);
+      if (sliding == 0) continue;
+      const double t = mu_[k] * push / sliding;
+      fx += t * wx, fy += t * wy, fz += t * wz;
+    }
+    out[3 * i] += fx, out[3 * i + 1] += fy, out[3 * i + 2] += fz;
+  }
+}
+
+double ShortRangeContact::point_energy_density(std::size_t i, const double* y, const std::vector<std::uint8_t>& broken) const {
+  if (i >= owned_) return 0.0;
+  double energy = 0;
+  for (std::uint64_t k = offsets_[i]; k < offsets_[i + 1]; ++k) {
+    if (bond_[k] != no_bond && broken[bond_[k]] == 0) continue;
+    const std::size_t j = partner_[k];
+    const double dx = y[3 * j] - y[3 * i], dy = y[3 * j + 1] - y[3 * i + 1], dz = y[3 * j + 2] - y[3 * i + 2];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz), d = distance_[k];
+    if (r < d) energy += 0.25 * coefficient_[k] * (d - r) * (d - r);
+  }
+  return energy;
+}
+
+}  // namespace peridot

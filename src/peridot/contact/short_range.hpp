@@ -1,0 +1,87 @@
+#pragma once
+// Short-range contact (Silling & Askari 2005): two points that are not bonded (never bonded, or their
+// bond broke), of one body or of two, repel each other when their distance r = |y_j − y_i| falls below
+//   d_ij = min(reference_fraction |x_j − x_i|, distance_factor (r_i + r_j)),
+// r_i the node radius (half the spacing: ½ V^(1/3) in 3D, ½ √(V/h) in 2D, ½ V/A in 1D). The pair force
+// density on i is
+//   b_i = −k_ij (d_ij − r) V_j e_ij,   e_ij = (y_j − y_i)/r,   k_ij = stiffness_factor × min(c_i/δ_i, c_j/δ_j),
+// c the block's stable (PMB) micromodulus, so that c_S = 15 c by default as in LAMMPS and EMU; the pair
+// stores ½ k_ij (d_ij − r)² V_i V_j. The reference fraction keeps neighbours at rest apart from the
+// contact: a pair is never compressed at t = 0. With friction (coefficient μ per pair of bodies), i also
+// gets μ k_ij (d_ij − r) V_j along the tangential part of v_j − v_i (Coulomb, against the sliding).
+//
+// The search costs little when nothing touches: a Verlet list of the pairs within d_ij + s, s the skin,
+// over the deformed positions, rebuilt only when some point has moved s/2 since the last build (then no
+// pair outside the list can be within d_ij). A pair that is bonded keeps its bond's index and is skipped
+// while the bond is intact (a byte read); without damage anywhere, bonded pairs are left out at the build.
+//
+// Indices: the owned points' pairs are built over the whole problem's points (every rank holds them), and
+// their partners are slots: the owned points (0 … owned − 1), then the remote partners (remote(), grouped by
+// owner rank) whose positions the caller copies in from their owners. Each point's pairs are in increasing
+// global index, and a point's force is gathered from its own pairs only, so every owned force is the same
+// bits for any thread and rank count.
+#include <cstdint>
+#include <vector>
+
+#include "peridot/deck/problem.hpp"
+#include "peridot/materials/model_context.hpp"
+#include "peridot/state/fields.hpp"
+
+namespace peridot {
+
+class ShortRangeContact {
+ public:
+  /// `all`: the whole problem's points in the global order; `params`: the blocks'; `damage`: whether any
+  /// bond may break.
+  ShortRangeContact(const ContactSpec& spec, const Problem& problem, const Discretization& all,
+                    const std::vector<MaterialParams>& params, bool damage);
+
+  /// The Verlet skin s (m).
+  double skin() const { return skin_; }
+  /// Whether one of the owned points has moved more than s/2 since the last build (or none was built).
+  bool needs_build(const VectorField& u, std::size_t owned) const;
+  /// Builds the owned points' pair lists from y, the current positions of all points (global order, 3 per
+  /// point). `owned_global[i]`: global index of owned point i; `owner`: rank of each global point (empty:
+  /// one rank); `bonds`: the local bond list, neighbours local indices whose global ones are `local_global`
+  /// (empty: the same); `u`: the owned points' displacement now (the reference for needs_build).
+  void build(const std::vector<double>& y, const std::vector<std::uint32_t>& owned_global, const std::vector<int>& owner,
+             const BondList& bonds, const std::vector<std::uint32_t>& local_global, const VectorField& u);
+  /// Global indices of the remote partners, grouped by owner rank (ascending), increasing within a rank;
+  /// their positions go to slots owned + k. remote_count()[r]: how many rank r owns.
+  const std::vector<std::uint32_t>& remote() const { return remote_; }
+  const std::vector<int>& remote_count() const { return remote_count_; }
+
+  /// Adds the short-range force density on each owned point into b (N/m³), from the slots' positions y and
+  /// (with friction) velocities v, 3 values per slot; `broken`: the bonds' flags.
+  void compute(const double* y, const double* v, const std::vector<std::uint8_t>& broken, VectorField& b) const;
+  /// Energy stored in owned point i's pairs, half of each, per volume of i (J/m³).
+  double point_energy_density(std::size_t i, const double* y, const std::vector<std::uint8_t>& broken) const;
+  bool has_friction() const { return !friction_.empty(); }
+
+  /// Pairs in the list, and list builds so far (for the benchmarks).
+  std::size_t pairs() const { return partner_.size(); }
+  std::size_t builds() const { return builds_; }
+
+ private:
+  static constexpr std::uint32_t no_bond = 0xffffffffu;
+  std::size_t blocks_ = 0;
+  std::vector<double> stiffness_;   ///< k per pair of blocks (blocks_ × blocks_)
+  std::vector<double> friction_;    ///< μ per pair of blocks (empty: no friction)
+  std::vector<double> radius_;      ///< node radius of every point (global order)
+  const Discretization* all_ = nullptr;
+  double distance_factor_ = 1.35, reference_fraction_ = 0.9, skin_ = 0, cutoff_ = 0;
+  bool damage_ = false;
+  std::size_t owned_ = 0, builds_ = 0;
+  VectorField u_built_;             ///< the owned points' displacement at the last build
+  // The pair lists in compressed rows over the owned points (structure of arrays).
+  std::vector<std::uint64_t> offsets_;
+  std::vector<std::uint32_t> partner_;  ///< slot of j
+  std::vector<std::uint32_t> bond_;     ///< bond i → j, or no_bond
+  std::vector<double> distance_;        ///< d_ij (m)
+  std::vector<double> coefficient_;     ///< k_ij V_j (N/m⁴)
+  std::vector<double> mu_;              ///< μ_ij (with friction)
+  std::vector<std::uint32_t> remote_;
+  std::vector<int> remote_count_;
+};
+
+}  // namespace peridot

@@ -1,0 +1,220 @@
+// Contact (contact/short_range.hpp, contact/rigid_body.hpp): two blocks that collide bounce apart with the
+// momentum conserved to round-off and the energy closing; the faces of a crack do not pass through each
+// other; contact that touches nothing changes no bit; a free rigid sphere exchanges momentum with a block
+// exactly; each rigid shape pushes a point out along its surface normal with κ h.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "peridot/deck/deck.hpp"
+#include "peridot/solvers/simulation.hpp"
+
+namespace peridot {
+namespace {
+
+/// Two 5 mm glass cubes, 4 mm apart (beyond a horizon, so never bonded), closing at 2 v.
+std::string two_cubes(const std::string& extra, double v = 20) {
+  return fmt::format(R"(discretization: {{dimension: 3, spacing: 1 mm, horizon_factor: 3.015}}
+materials:
+  glass: {{model: pmb, density: 2440, youngs_modulus: 72 GPa, damage: {{critical_stretch: 0.01}}}}
+bodies:
+  left: {{material: glass, shape: {{box: {{min: [0, 0, 0], max: [5 mm, 5 mm, 5 mm]}}}}}}
+  right: {{material: glass, shape: {{box: {{min: [9 mm, 0.4 mm, 0], max: [14 mm, 5.4 mm, 5 mm]}}}}}}
+node_sets:
+  l: {{shape: {{box: {{min: [-1, -1, -1], max: [7 mm, 1, 1]}}}}}}
+  r: {{shape: {{box: {{min: [7 mm, -1, -1], max: [1, 1, 1]}}}}}}
+initial_conditions:
+  - {{node_set: l, velocity: {{x: "{}"}}}}
+  - {{node_set: r, velocity: {{x: "{}"}}}}
+{}
+solver: {{end_time: 300 us}}
+)",
+                     v, -v, extra);
+}
+
+/// Smallest distance between a point of the left cube and one of the right cube (m).
+double closest_approach(const Simulation& sim) {
+  const Discretization& disc = sim.discretization();
+  const State& s = sim.state();
+  double closest = INFINITY;
+  for (std::size_t i = 0; i < disc.num_points(); ++i)
+    for (std::size_t j = 0; j < disc.num_points(); ++j) {
+      if (disc.block[i] != 0 || disc.block[j] != 1) continue;
+      const Vec3 d = disc.x.get(j) + s.u.get(j) - disc.x.get(i) - s.u.get(i);
+      closest = std::min(closest, norm(d));
+    }
+  return closest;
+}
+
+TEST(ShortRangeContact, CollidingCubesBounceApartConservingMomentumAndEnergy) {
+  Simulation sim(parse_deck(two_cubes("contact: {}"), "cubes.yaml", "."));
+  sim.initialize();
+  const Totals start = sim.totals();
+  const double p_one = 0.5 * start.kinetic_energy / 20 * 2;  // m v of one cube: KE0 = 2 · ½ m v²
+  double closest = INFINITY, worst_balance = 0, peak_contact = 0;
+  while (sim.state().step < sim.total_steps()) {
+    sim.step();
+    if (sim.state().step % 10) continue;
+    closest = std::min(closest, closest_approach(sim));
+    const Totals t = sim.totals();
+    EXPECT_LT(norm(t.momentum), 1e-13 * p_one) << "at step " << sim.state().step;
+    // What the contact forces did is in external_work: it is minus the change of the stored contact energy.
+    worst_balance = std::max(worst_balance, std::abs(t.kinetic_energy + t.strain_energy - t.external_work - start.kinetic_energy));
+    peak_contact = std::max(peak_contact, t.contact_energy);
+  }
+  const Totals end = sim.totals();
+  // Left cube's momentum after the bounce: it moves back.
+  const Discretization& disc = sim.discretization();
+  double left_momentum = 0;
+  for (std::size_t i = 0; i < disc.num_points(); ++i)
+    if (disc.block[i] == 0) left_momentum += 2440 * disc.volume[i] * sim.state().v(i, 0);
+  fmt::print("measured: closest approach {:.3g} mm, left cube's momentum {:.4g} of its initial, worst |KE + W − work − KE0| = "
+             "{:.3g} of KE0, peak contact energy {:.3g} of KE0, fragments {}, pair list builds {}\n",
+             closest * 1e3, left_momentum / p_one, worst_balance / start.kinetic_energy, peak_contact / start.kinetic_energy,
+             end.fragments, sim.short_range()->builds());
+  EXPECT_LT(left_momentum, -0.5 * p_one);  // it came back (the rest rings in the cubes)
+  EXPECT_EQ(end.fragments, 2u);
+  EXPECT_GT(closest, 0.5e-3);  // never closer than half a spacing (contact at d = 1.35 Δx)
+  EXPECT_LT(worst_balance, 0.01 * start.kinetic_energy);
+  EXPECT_GT(peak_contact, 0.05 * start.kinetic_energy);  // the contact took the impact
+  EXPECT_EQ(end.max_damage, 0.0);
+}
+
+TEST(ShortRangeContact, ContactThatTouchesNothingChangesNoBit) {
+  // The cubes, closing slowly, do not meet within 30 µs: contact on or off, the same bits.
+  auto run = [](const std::string& contact) {
+    std::string deck = two_cubes(contact, 1);
+    deck.replace(deck.find("300 us"), 6, "30 us");
+    Simulation sim(parse_deck(deck, "cubes.yaml", "."));
+    sim.initialize();
+    while (sim.state().step < sim.total_steps()) sim.step();
+    return std::vector<double>(sim.state().u.data(), sim.state().u.data() + 3 * sim.discretization().num_points());
+  };
+  EXPECT_EQ(run(""), run("contact: {}"));
+}
+
+TEST(ShortRangeContact, CrackFacesPushedTogetherDoNotPassThrough) {
+  // One bar cut through by a precrack at x = 5 mm, its halves thrown at each other: within one body, the
+  // faces (1 Δx apart at rest, so d = 0.9 Δx) repel; without contact they pass through each other.
+  auto deepest = [](const std::string& contact) {
+    const std::string deck = fmt::format(R"(discretization: {{dimension: 2, plane: stress, spacing: 0.5 mm, horizon_factor: 3.015}}
+materials:
+  pmma: {{model: pmb, density: 1190, youngs_modulus: 3 GPa, damage: {{critical_stretch: 0.05}}}}
+bodies:
+  bar: {{material: pmma, shape: {{box: {{min: [0, 0], max: [10 mm, 3 mm]}}}}}}
+precracks:
+  - segment: {{from: [5 mm, -1 mm], to: [5 mm, 4 mm]}}
+initial_conditions:
+  - velocity: {{x: "x < 0.005 ? 30 : -30"}}
+{}
+solver: {{end_time: 40 us}}
+)",
+                                         contact);
+    Simulation sim(parse_deck(deck, "crack.yaml", "."));
+    sim.initialize();
+    const Discretization& disc = sim.discretization();
+    double overlap = -INFINITY;  // how far a point of one half has gone past the other half's face
+    while (sim.state().step < sim.total_steps()) {
+      sim.step();
+      double left_front = -INFINITY, right_front = INFINITY;
+      for (std::size_t i = 0; i < disc.num_points(); ++i) {
+        const double y = disc.x(i, 0) + sim.state().u(i, 0);
+        if (disc.x(i, 0) < 0.005) left_front = std::max(left_front, y);
+        else right_front = std::min(right_front, y);
+      }
+      overlap = std::max(overlap, left_front - right_front);
+    }
+    return overlap;
+  };
+  const double without = deepest(""), with = deepest("contact: {}");
+  fmt::print("measured: the halves overlap by {:.3g} mm without contact, {:.3g} mm with it\n", without * 1e3, with * 1e3);
+  EXPECT_GT(without, 0.5e-3);
+  EXPECT_LT(with, -0.25e-3);  // the faces stay more than half a spacing apart
+}
+
+TEST(RigidBody, FreeSphereAndBlockExchangeMomentumExactly) {
+  const std::string deck = R"(discretization: {dimension: 3, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  al: {model: pmb, density: 2700, youngs_modulus: 70 GPa}
+bodies:
+  block: {material: al, shape: {box: {min: [0, 0, 0], max: [6 mm, 6 mm, 4 mm]}}}
+rigid_bodies:
+  - name: ball
+    sphere: {center: [3 mm, 3 mm, 6 mm], radius: 2 mm}
+    mass: 2 g
+    velocity: [0, 0, -20]
+solver: {end_time: 60 us}
+)";
+  Simulation sim(parse_deck(deck, "ball.yaml", "."));
+  sim.initialize();
+  const RigidBody& ball = sim.rigid_bodies()[0];
+  const double p0 = 0.002 * 20;
+  double peak = 0;
+  while (sim.state().step < sim.total_steps()) {
+    sim.step();
+    const Totals t = sim.totals();
+    const Vec3 total = t.momentum + 0.002 * ball.velocity;
+    EXPECT_LT(std::abs(total.z + p0), 1e-12 * p0) << "at step " << sim.state().step;
+    EXPECT_LT(std::abs(total.x) + std::abs(total.y), 1e-12 * p0);
+    peak = std::max(peak, ball.force.z);
+  }
+  fmt::print("measured: ball velocity {:.4g} m/s after the impact (from −20), peak force {:.4g} N\n", ball.velocity.z, peak);
+  EXPECT_GT(ball.velocity.z, -15.0);  // the block slowed it
+  EXPECT_GT(peak, 0.0);
+  EXPECT_EQ(sim.totals().rigid_force[0].z, ball.force.z);  // the history's force is the one that moved it
+}
+
+TEST(RigidBody, EachShapePushesAPointOutAlongItsNormal) {
+  // A 5 × 5 × 5 block at rest; each shape overlaps one corner point by a known depth h: its force density
+  // is κ h n with κ = 0.5 · 2π c δ², n the outward normal of the nearest face.
+  struct Case {
+    std::string body;
+    Vec3 normal;
+    double depth;
+  };
+  // The corner point (0.5, 0.5, 0.5) mm; the next points are 1 mm away, out of every shape.
+  const Case cases[] = {
+      {"sphere: {center: [-0.3 mm, 0.5 mm, 0.5 mm], radius: 1 mm}", {1, 0, 0}, 0.2e-3},
+      {"cylinder: {center: [0.5 mm, 0.5 mm, -2 mm], axis: [0, 0, 1], length: 2.7 mm, radius: 0.4 mm}", {0, 0, 1}, 0.2e-3},
+      {"cylinder: {center: [-0.2 mm, 0.5 mm, -1 mm], axis: [0, 0, 1], length: 2 mm, radius: 0.8 mm}", {1, 0, 0}, 0.1e-3},
+      {"box: {min: [-1 mm, -1 mm, -1 mm], max: [0.6 mm, 0.65 mm, 0.7 mm]}", {1, 0, 0}, 0.1e-3},
+      {"plane: {point: [0.8 mm, 0.8 mm, 0.8 mm], normal: [1, 1, 1]}", {1 / std::sqrt(3.0), 1 / std::sqrt(3.0), 1 / std::sqrt(3.0)},
+       0.3e-3 * std::sqrt(3.0)},
+  };
+  for (const Case& c : cases) {
+    const std::string deck = fmt::format(R"(discretization: {{dimension: 3, spacing: 1 mm, horizon_factor: 3.015}}
+materials:
+  al: {{model: pmb, density: 2700, youngs_modulus: 70 GPa}}
+bodies:
+  block: {{material: al, shape: {{box: {{min: [0, 0, 0], max: [5 mm, 5 mm, 5 mm]}}}}}}
+rigid_bodies:
+  - {{name: tool, {}}}
+solver: {{num_steps: 1}}
+)",
+                                         c.body);
+    Simulation sim(parse_deck(deck, "shape.yaml", "."));
+    sim.initialize();
+    const MaterialParams& p = sim.model().params[0];
+    const double kappa = 0.5 * 2 * std::numbers::pi * p.stable_micromodulus * p.horizon * p.horizon;
+    const Discretization& disc = sim.discretization();
+    std::size_t touched = 0;
+    for (std::size_t i = 0; i < disc.num_points(); ++i) {
+      const Vec3 b = sim.contact_force().get(i);
+      if (norm(b) == 0) continue;
+      ++touched;
+      EXPECT_NEAR(disc.x(i, 0), 0.5e-3, 1e-12) << c.body;
+      EXPECT_NEAR(disc.x(i, 1), 0.5e-3, 1e-12) << c.body;
+      EXPECT_NEAR(disc.x(i, 2), 0.5e-3, 1e-12) << c.body;
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(b[d], kappa * c.depth * c.normal[d], 1e-9 * kappa * c.depth) << c.body;
+    }
+    EXPECT_EQ(touched, 1u) << c.body;
+  }
+}
+
+}  // namespace
+}  // namespace peridot
