@@ -147,6 +147,7 @@ Problem benchmark_problem(const Options& o) {
   p.solver.parameters = complete_parameters(find_solver("explicit")->keys, {});  // the defaults a deck gets
   p.solver.parameters.set_integer("num_steps", o.steps);
   if (o.dt > 0) p.solver.parameters.set_number("time_step", o.dt);
+  if (o.lammps_failure_order) p.solver.parameters.set_text("bond_failure", "after_force");
   p.output.progress = false;
   return p;
 }
@@ -177,7 +178,6 @@ int main(int argc, char** argv) {
 
   const auto t_setup = std::chrono::steady_clock::now();
   Simulation sim(problem);  // discretization, neighbour build, materials
-  sim.model().bond_failure_after_force = o.lammps_failure_order;
   const double setup_s = comm.max(seconds_since(t_setup));
   sim.initialize();
   comm.barrier();

@@ -108,8 +108,9 @@ def count_bonds(x0, delta=DELTA, lattice=LATTICE):
     return n
 
 
-def run(model, workdir, lmp='/usr/bin/lmp', quiet=True):
-    """Run the LAMMPS example for model 'pmb' or 'lps' in workdir.
+def run(model, workdir, lmp='/usr/bin/lmp', quiet=True, alpha=None):
+    """Run the LAMMPS example for model 'pmb' or 'lps' in workdir; alpha, if given, replaces the example's
+    alpha = 0.25 of the critical-stretch rule s0 = s00 - alpha * s_min (0: a constant s0 = s00, Peridot's).
 
     Returns a dict of numpy arrays / numbers:
       step, time [s]              output every 10 steps (0..1000)
@@ -133,7 +134,12 @@ def run(model, workdir, lmp='/usr/bin/lmp', quiet=True):
     workdir = os.path.abspath(workdir)
     os.makedirs(workdir, exist_ok=True)
     deck = 'in.' + model
-    shutil.copy(os.path.join(HERE, deck), os.path.join(workdir, deck))
+    with open(os.path.join(HERE, deck)) as fh:
+        text = fh.read()
+    if alpha is not None:
+        text = text.replace('0.0015001 0.0005 0.25', '0.0015001 0.0005 %r' % float(alpha))
+    with open(os.path.join(workdir, deck), 'w') as fh:
+        fh.write(text)
     for f in ['force.dat', 'log.lammps'] + ['dump.%d.txt' % s for s in DUMP_STEPS]:
         p = os.path.join(workdir, f)
         if os.path.exists(p):

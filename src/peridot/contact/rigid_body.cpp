@@ -40,6 +40,7 @@ RigidBodies::RigidBodies(const Problem& problem, const ModelContext& model) : di
     b.mass = s.mass;
     b.velocity = s.velocity;
     b.stiffness_factor = s.stiffness_factor;
+    b.indenter_stiffness = s.indenter_stiffness;
     bodies_.push_back(std::move(b));
   }
   contacts_.resize(bodies_.size());
@@ -145,7 +146,16 @@ Vec3 RigidBodies::force_density(const RigidBody& body, const Discretization& dis
   Vec3 n;
   const double h = depth(body, disc.x.get(i) + u.get(i), n);
   if (h == 0) return {};
-  return (h * body.stiffness_factor * point_stiffness_[static_cast<std::size_t>(disc.block[i])]) * n;
+  return pressure(body, static_cast<std::size_t>(disc.block[i]), h) * n;
+}
+
+double RigidBodies::pressure(const RigidBody& body, std::size_t block, double h) const {
+  return body.indenter_stiffness > 0 ? body.indenter_stiffness * h * h : body.stiffness_factor * point_stiffness_[block] * h;
+}
+
+double RigidBodies::energy_density(const RigidBody& body, std::size_t block, double h) const {
+  return body.indenter_stiffness > 0 ? body.indenter_stiffness * h * h * h / 3
+                                     : 0.5 * body.stiffness_factor * point_stiffness_[block] * h * h;
 }
 
 void RigidBodies::compute(const Discretization& disc, std::size_t n, const VectorField& u, VectorField& b) {
@@ -186,7 +196,7 @@ double RigidBodies::point_energy(const Discretization& disc, const VectorField& 
   for (const RigidBody& body : bodies_) {
     Vec3 n;
     const double h = depth(body, disc.x.get(i) + u.get(i), n);
-    if (h > 0) energy += 0.5 * body.stiffness_factor * point_stiffness_[static_cast<std::size_t>(disc.block[i])] * h * h * disc.volume[i];
+    if (h > 0) energy += energy_density(body, static_cast<std::size_t>(disc.block[i]), h) * disc.volume[i];
   }
   return energy;
 }

@@ -8,7 +8,8 @@
 // (materials/material.hpp): the point stiffness of the Silling–Askari time step bound, 2π c δ² in 3D
 // (∫ 4πξ² c/ξ dξ) and 2π h c δ in 2D. The default factor 0.5 makes a point of a flat surface (about half a
 // family) no stiffer than an interior point, so the stable time step estimate still holds. The force is
-// normal only (frictionless) and elastic: the penalty stores ½ κ h² V, which contact_energy reports. The
+// normal only (frictionless) and elastic: the penalty stores ½ κ h² V, which contact_energy reports. For
+// comparisons with LAMMPS decks a body may instead push with fix indent's K h² (indenter_stiffness). The
 // force on a body is −Σ b V over its contacts.
 // A wall with `contact: symmetry` is, besides, a symmetry plane for the correspondence points near it
 // (correspondence/mirror_bonds.hpp): they are bonded to the mirror images of their neighbours from t = 0
@@ -40,6 +41,7 @@ struct RigidBody {
   double wall_speed = 0;  ///< a wall's speed along its normal (m/s)
   double mass = 0;        ///< free (kg)
   double stiffness_factor = 0.5;
+  double indenter_stiffness = 0;  ///< K > 0: force density K h² (LAMMPS's fix indent) instead of κ h (N/m⁵)
   // The body's motion: displacement d of its placement at t = 0, velocity, and the points' contact force on
   // it at the last evaluation.
   Vec3 offset, velocity, force;
@@ -84,6 +86,9 @@ class RigidBodies {
   /// Depth h ≥ 0 of y inside body k at its present placement and the outward normal there (h = 0: outside).
   double depth(const RigidBody& body, Vec3 y, Vec3& normal) const;
   Vec3 force_density(const RigidBody& body, const Discretization& disc, const VectorField& u, std::size_t i) const;
+  /// |b| (N/m³) and the stored energy per volume (J/m³) at depth h of a point of `block`.
+  double pressure(const RigidBody& body, std::size_t block, double h) const;
+  double energy_density(const RigidBody& body, std::size_t block, double h) const;
 
   int dimension_ = 3;
   std::vector<RigidBody> bodies_;

@@ -624,6 +624,7 @@ struct Parser {
       b.name = r["name"].text;
       b.pos = pos;
       b.stiffness_factor = r["stiffness_factor"].number;
+      if (r.given("indenter_stiffness")) b.indenter_stiffness = r["indenter_stiffness"].number;
       for (std::string_view kind : {"sphere", "cylinder", "box", "plane"}) {
         if (!r.given(kind)) continue;
         MapReader s(ctx, r[kind].node, r[kind].key_pos, r.path_of(kind), deck_section("rigid_bodies[i]." + std::string(kind)).keys);

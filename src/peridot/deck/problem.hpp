@@ -214,6 +214,7 @@ struct RigidBodySpec {
   double mass = 0;    ///< free: mass (kg)
   Vec3 velocity;      ///< free: initial velocity (m/s)
   double stiffness_factor = 0.5;  ///< penalty stiffness as a fraction of a full family's (-)
+  double indenter_stiffness = 0;  ///< K > 0: the penalty K h² of LAMMPS's fix indent instead (N/m⁵)
 };
 
 /// A prescribed temperature field: the thermal strain α (T − T_ref) of the ordinary models and the WLF shift of

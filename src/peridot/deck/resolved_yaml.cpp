@@ -320,7 +320,10 @@ void emit_contact(YAML::Emitter& out, const Problem& p) {
       out << YAML::Key << "velocity" << YAML::Value;
       emit_point(out, b.velocity);
     }
-    out << YAML::Key << "stiffness_factor" << YAML::Value << number(b.stiffness_factor);
+    if (b.indenter_stiffness > 0)
+      out << YAML::Key << "indenter_stiffness" << YAML::Value << number(b.indenter_stiffness);
+    else
+      out << YAML::Key << "stiffness_factor" << YAML::Value << number(b.stiffness_factor);
   });
   if (!p.contact) return;
   const ContactSpec& c = *p.contact;

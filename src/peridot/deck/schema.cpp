@@ -373,7 +373,10 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "velocity", .type = VT::point, .description = "a free body: its initial velocity (m/s)"},
                 {.key = "stiffness_factor", .default_yaml = "0.5", .range = positive,
                  .description = "penalty stiffness as a fraction of a full family's; 0.5 keeps a surface point no stiffer "
-                                "than an interior one, so the stable time step holds"}}});
+                                "than an interior one, so the stable time step holds", .one_of = "penalty"},
+                {.key = "indenter_stiffness", .range = positive,
+                 .description = "instead, the penalty of LAMMPS's fix indent: force density K h² at depth h, K in N/m⁵ "
+                                "(for comparisons with LAMMPS decks; far softer than a rigid body)", .one_of = "penalty"}}});
   s.push_back({"rigid_bodies[i].sphere", "a ball (a disc in 2D)",
                {{.key = "center", .type = VT::point, .description = "centre at t = 0 (m)", .required = true},
                 {.key = "radius", .unit = Unit::length, .range = positive, .description = "radius (m)", .required = true}}});

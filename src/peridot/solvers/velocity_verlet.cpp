@@ -28,7 +28,12 @@ SolverInfo VelocityVerlet::info() {
                     .description = "fraction of the stable time step"},
                    {.key = "damping", .unit = Unit::rate, .default_yaml = "0", .range = {0, infinity, false, true},
                     .description = "mass-proportional viscous damping c (1/s): free velocities decay as e^(−ct); "
-                                   "for relaxing to static equilibrium (the energy it removes is not in the history)"}}};
+                                   "for relaxing to static equilibrium (the energy it removes is not in the history)"},
+                   {.key = "bond_failure", .type = ValueType::choice, .default_yaml = "before_force",
+                    .description = "when a bond over its critical stretch breaks: before_force, before it carries any force "
+                                   "at that stretch (Peridigm's order); after_force, after carrying that step's force, so "
+                                   "LPS's dilatation still counts it (LAMMPS PERI's order)",
+                    .choices = {"before_force", "after_force"}}}};
 }
 
 TimeIntegrator::Schedule VelocityVerlet::schedule(const SolverSpec& solver, double stable_time_step) {
@@ -46,7 +51,9 @@ TimeIntegrator::Schedule VelocityVerlet::schedule(const SolverSpec& solver, doub
   return s;
 }
 
-VelocityVerlet::VelocityVerlet(Simulation& sim) : sim_(sim), damping_(sim.problem().solver.parameters.number("damping")) {}
+VelocityVerlet::VelocityVerlet(Simulation& sim) : sim_(sim), damping_(sim.problem().solver.parameters.number("damping")) {
+  sim.model().bond_failure_after_force = sim.problem().solver.parameters.text("bond_failure") == "after_force";
+}
 
 void VelocityVerlet::initialize() {
   sim_.apply_initial_state();
