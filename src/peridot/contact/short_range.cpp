@@ -61,18 +61,20 @@ ShortRangeContact::ShortRangeContact(const ContactSpec& spec, const Problem& pro
   cutoff_ = distance_factor_ * 2 * largest + skin_;
 }
 
-bool ShortRangeContact::needs_build(const VectorField& u, std::size_t owned) const {
-  if (builds_ == 0 || owned != owned_) return true;
+bool ShortRangeContact::place(const VectorField& x, const VectorField& u, std::size_t owned, double* y) const {
+  const bool built = builds_ > 0 && owned == owned_;
   const double limit = 0.25 * skin_ * skin_;
   const double* a = u.data();
-  const double* b = u_built_.data();
+  const double* b = built ? u_built_.data() : a;
+  const double* p = x.data();
   bool moved = false;
 #pragma omp parallel for schedule(static) reduction(|| : moved)
   for (std::size_t i = 0; i < owned; ++i) {
     const double dx = a[3 * i] - b[3 * i], dy = a[3 * i + 1] - b[3 * i + 1], dz = a[3 * i + 2] - b[3 * i + 2];
     moved = moved || dx * dx + dy * dy + dz * dz > limit;
+    for (std::size_t d = 0; d < 3; ++d) y[3 * i + d] = p[3 * i + d] + a[3 * i + d];
   }
-  return moved;
+  return moved || !built;
 }
 
 void ShortRangeContact::build(const std::vector<double>& y, const std::vector<std::uint32_t>& owned_global,

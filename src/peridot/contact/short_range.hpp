@@ -38,8 +38,9 @@ class ShortRangeContact {
 
   /// The Verlet skin s (m).
   double skin() const { return skin_; }
-  /// Whether one of the owned points has moved more than s/2 since the last build (or none was built).
-  bool needs_build(const VectorField& u, std::size_t owned) const;
+  /// Writes the owned points' positions y = x + u into y (3 per point) and returns whether one of them has
+  /// moved more than s/2 since the last build (or none was built): one pass over the points.
+  bool place(const VectorField& x, const VectorField& u, std::size_t owned, double* y) const;
   /// Builds the owned points' pair lists from y, the current positions of all points (global order, 3 per
   /// point). `owned_global[i]`: global index of owned point i; `owner`: rank of each global point (empty:
   /// one rank); `bonds`: the local bond list, neighbours local indices whose global ones are `local_global`

@@ -234,16 +234,15 @@ void Simulation::compute_contact() {
     }
   }
   if (!short_range_) return;
-  bool build = short_range_->needs_build(state_.u, owned_);
+  if (contact_y_.size() < 3 * owned_) contact_y_.resize(3 * owned_);
+  bool build = short_range_->place(disc_.x, state_.u, owned_, contact_y_.data());
   if (!comm_.serial()) build = comm_.any(build);
   const bool friction = short_range_->has_friction();
   if (build) {
     // The positions of every point (every rank holds the whole discretization), for the search.
     const Discretization& all = comm_.serial() ? disc_ : global_disc_;
     std::vector<double> y(3 * all.num_points());
-    std::vector<double> mine(3 * owned_);
-    for (std::size_t i = 0; i < owned_; ++i)
-      for (int d = 0; d < 3; ++d) mine[3 * i + static_cast<std::size_t>(d)] = disc_.x(i, d) + state_.u(i, d);
+    std::vector<double> mine(contact_y_.begin(), contact_y_.begin() + static_cast<std::ptrdiff_t>(3 * owned_));
     std::vector<std::uint32_t> owned_global(owned_);
     for (std::size_t i = 0; i < owned_; ++i) owned_global[i] = comm_.serial() ? static_cast<std::uint32_t>(i) : global_index_[i];
     if (comm_.serial()) {
@@ -264,12 +263,9 @@ void Simulation::compute_contact() {
       });
     }
     const std::size_t slots = owned_ + short_range_->remote().size();
-    contact_y_.assign(3 * slots, 0.0);
+    contact_y_.resize(3 * slots);  // the owned positions stay
     if (friction) contact_v_.assign(3 * slots, 0.0);
   }
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < owned_; ++i)
-    for (int d = 0; d < 3; ++d) contact_y_[3 * i + static_cast<std::size_t>(d)] = disc_.x(i, d) + state_.u(i, d);
   contact_halo_.exchange(contact_y_.data(), 3);
   if (friction) {
     std::copy(state_.v.data(), state_.v.data() + 3 * owned_, contact_v_.data());
