@@ -136,6 +136,9 @@ class History {
     if (sim.any_damage()) columns.push_back("broken_fraction");
     for (const std::string& name : sim.integrator().history_columns()) columns.push_back(name);
     if (sim.has_contact() && (!problem.rigid_bodies.empty() || problem.contact)) columns.push_back("contact_energy");
+    if (problem.contact)
+      for (const BodySpec& body : problem.bodies)
+        for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("contact_" + body.name + axis);
     for (std::size_t k = 0; k < sim.rigid_bodies().size(); ++k) {
       const RigidBody& body = sim.rigid_bodies()[k];
       if (body.wall) {
@@ -168,6 +171,7 @@ class History {
     for (double value : sim_.integrator().history_values()) row.push_back(value);
     const Problem& problem = sim_.problem();
     if (sim_.has_contact() && (!problem.rigid_bodies.empty() || problem.contact)) row.push_back(t.contact_energy);
+    for (const Vec3& force : t.body_contact_force) row.insert(row.end(), {force.x, force.y, force.z});
     for (std::size_t k = 0; k < t.rigid_force.size(); ++k) {
       const RigidBody& body = sim_.rigid_bodies()[k];
       const Vec3& force = t.rigid_force[k];

@@ -415,6 +415,7 @@ void Simulation::gather_outputs(bool fields, bool totals) {
   gather_field(work_.data(), 1, global_work_);
   if (totals) gather_field(energy_density_.data(), 1, global_energy_density_);
   if (totals && has_contact()) gather_field(contact_energy_.data(), 1, global_contact_energy_);
+  if (totals && short_range_) gather_field(contact_force_.data(), 3, global_contact_force_);
   if (has_correspondence()) gather_field(correspondence_->point_hourglass_work().data(), 1, global_hourglass_work_);
   if (fields)
     for (auto& [name, values] : state_.point_outputs) gather_field(values.data(), 1, g.point_outputs[name]);
@@ -465,6 +466,17 @@ Totals Simulation::output_totals() const {
   if (has_contact()) {
     const std::vector<double>& energy = comm_.serial() ? contact_energy_ : global_contact_energy_;
     totals.contact_energy = deterministic_sum(n, [&](std::size_t i) { return energy[i]; });
+  }
+  if (short_range_) {
+    const double* c = comm_.serial() ? contact_force_.data() : global_contact_force_.data();
+    for (std::size_t block = 0; block < problem_.bodies.size(); ++block) {
+      Vec3 force;
+      for (int d = 0; d < 3; ++d)
+        force[d] = deterministic_sum(n, [&](std::size_t i) {
+          return static_cast<std::size_t>(disc.block[i]) == block ? c[3 * i + static_cast<std::size_t>(d)] * disc.volume[i] : 0.0;
+        });
+      totals.body_contact_force.push_back(force);
+    }
   }
   for (std::size_t w = 0; w < bodies_->size(); ++w) {
     Vec3 force = bodies_->force_on(w, disc, s.u);

@@ -51,6 +51,7 @@ struct Totals {
   double external_work = 0;   ///< J, work of supports, body forces and contact forces since t = 0
   std::vector<Vec3> rigid_force;  ///< N, the points' contact force on each rigid wall and body
   double contact_energy = 0;  ///< J, stored in the contact penalties (rigid bodies and short-range pairs)
+  std::vector<Vec3> body_contact_force;  ///< N, Σ b V of the contact forces on each body's points (short-range contact)
   double kinetic_energy = 0;  ///< J
   double strain_energy = 0;   ///< J, stored (elastic) energy
   double dissipated_energy = 0;  ///< J, plastic work or viscous dissipation since t = 0
@@ -236,6 +237,7 @@ class Simulation {
   Halo contact_halo_;
   std::vector<int> owner_;
   std::vector<double> contact_energy_, global_contact_energy_;  ///< J per point, for the totals
+  std::vector<double> global_contact_force_;  ///< distributed: the contact force density gathered to rank 0
   std::uint64_t broken_bonds_ = 0, all_bonds_ = 0;  ///< directed, all ranks, at the last gather_outputs(…, true)
   std::unique_ptr<EnergyFailure> energy_failure_;  ///< null unless a block breaks bonds by their work
   std::unique_ptr<TemperatureField> temperature_;  ///< the deck's temperature field; null without one
