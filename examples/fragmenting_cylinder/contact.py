@@ -2,14 +2,15 @@
 """The fragmenting cylinder with contact on: do fragments pass through each other, and how many fragments of what
 mass does the tube break into, at two resolutions and two random seeds?
 
-    contact.py --peridot PATH [--spacings 1.5,1] [--seeds 42,7] [--threads N] [--out DIR] [--without]
+    contact.py --peridot PATH [--spacings 1.5,1] [--seeds 42,7] [--threads N] [--out DIR] [--without] [--check]
 
 Each run is deck.yaml with the given lattice spacing (the horizon stays 4.17462 mm) and jitter seed, with
 `contact: {}` (--without: also each run without contact, for the count of overlaps contact prevents). At every
 Exodus frame it counts the pairs of points of different fragments closer than half a spacing (in the deformed
 configuration) and their closest distance; at the last frame the fragments (connected through intact bonds) and
 their masses. Writes DIR/fragments.png (the cumulative mass distribution of every run) and prints the table of
-README.md."""
+README.md. --check exits 1 if, with contact on, two points of different fragments come closer than half a spacing
+in some frame."""
 import argparse
 import itertools
 import os
@@ -110,10 +111,12 @@ def main():
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--out", default=str(HERE / "out_contact"))
     ap.add_argument("--without", action="store_true", help="also run each case without contact")
+    ap.add_argument("--check", action="store_true", help="exit 1 on a pair of fragments closer than Δx/2 (contact on)")
     a = ap.parse_args()
     out = pathlib.Path(a.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
     rows, curves = [], []
+    overlapping = 0
     for spacing in [float(s) for s in a.spacings.split(",")]:
         for seed in [int(s) for s in a.seeds.split(",")]:
             for contact in ([True, False] if a.without else [True]):
@@ -121,6 +124,8 @@ def main():
                 frames, masses = analyse(path, spacing * 1e-3)
                 total = masses.sum()
                 overlaps = max(f[1] for f in frames)
+                if contact:
+                    overlapping += overlaps
                 closest = np.nanmin([f[2] for f in frames])
                 rows.append([f"{spacing:g}", str(seed), "on" if contact else "off", str(overlaps), f"{closest:.2f}",
                              str(len(masses)), str(int((masses > 1e-3 * total).sum())),
@@ -146,6 +151,10 @@ def main():
     fig.tight_layout()
     fig.savefig(out / "fragments.png", dpi=120)
     print(f"wrote {out / 'fragments.png'}")
+    if a.check:
+        print(("ok" if overlapping == 0 else "FAIL") + f": {overlapping} pairs of different fragments closer than Δx/2 "
+              "with contact on")
+        sys.exit(0 if overlapping == 0 else 1)
 
 
 if __name__ == "__main__":
