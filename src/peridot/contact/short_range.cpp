@@ -6,6 +6,8 @@
 #include <limits>
 #include <numeric>
 
+#include <omp.h>
+
 #include "peridot/core/error.hpp"
 
 namespace peridot {
@@ -80,6 +82,7 @@ bool ShortRangeContact::place(const VectorField& x, const VectorField& u, std::s
 void ShortRangeContact::build(const std::vector<double>& y, const std::vector<std::uint32_t>& owned_global,
                               const std::vector<int>& owner, const BondList& bonds,
                               const std::vector<std::uint32_t>& local_global, const VectorField& u) {
+  const double start = omp_get_wtime();
   const Discretization& all = *all_;
   const std::size_t n = all.num_points();
   owned_ = owned_global.size();
@@ -87,70 +90,108 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
   u_built_.resize(owned_);
   std::copy(u.data(), u.data() + 3 * owned_, u_built_.data());
 
-  // Cells of size ≥ the largest d_ij + s, sorted by key: a point's candidates are in the 27 cells around it.
+  // Cells of size ≥ the largest d_ij + s over the points' bounding box, filled by a counting sort: a point's
+  // candidates are in the 27 cells around it. Where the box holds far more cells than points (fragments flown
+  // far apart), the cells are the distinct occupied ones, found by binary search.
   const double h = cutoff_;
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], y[3 * i + d]), hi[d] = std::max(hi[d], y[3 * i + d]);
+  std::int64_t span[3];
+  for (int d = 0; d < 3; ++d) span[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo[d]) / h)) + 3;  // a cell of margin each side
+  auto cell_of = [&](std::size_t i, int d) {
+    return static_cast<std::int64_t>(std::floor((y[3 * i + static_cast<std::size_t>(d)] - lo[d]) / h)) + 1;
+  };
+  const double cells = static_cast<double>(span[0]) * static_cast<double>(span[1]) * static_cast<double>(span[2]);
+  const bool dense = cells <= 8.0 * static_cast<double>(n) + 1024;
+  auto key_of = [&](std::int64_t cx, std::int64_t cy, std::int64_t cz) {
+    return dense ? static_cast<std::uint64_t>((cx * span[1] + cy) * span[2] + cz) : cell_key(cx, cy, cz);
+  };
   std::vector<std::uint64_t> key(n);
-  auto cell_of = [&](std::size_t i, int d) { return static_cast<std::int64_t>(std::floor(y[3 * i + static_cast<std::size_t>(d)] / h)); };
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) key[i] = cell_key(cell_of(i, 0), cell_of(i, 1), cell_of(i, 2));
+  for (std::size_t i = 0; i < n; ++i) key[i] = key_of(cell_of(i, 0), cell_of(i, 1), cell_of(i, 2));
   std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
-  std::vector<std::uint64_t> sorted_keys(n);
-  for (std::size_t k = 0; k < n; ++k) sorted_keys[k] = key[order[k]];
+  std::vector<std::uint64_t> first_of;  // dense: cell → its first entry in order (and one past the last cell)
+  std::vector<std::uint64_t> sorted_keys;
+  if (dense) {
+    first_of.assign(static_cast<std::size_t>(cells) + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++first_of[key[i] + 1];
+    for (std::size_t c = 1; c < first_of.size(); ++c) first_of[c] += first_of[c - 1];
+    std::vector<std::uint64_t> fill(first_of.begin(), first_of.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order[fill[key[i]]++] = static_cast<std::uint32_t>(i);  // increasing i per cell
+  } else {
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+    sorted_keys.resize(n);
+    for (std::size_t k = 0; k < n; ++k) sorted_keys[k] = key[order[k]];
+  }
+  auto cell_range = [&](std::uint64_t want) -> std::pair<std::size_t, std::size_t> {
+    if (dense) return {first_of[want], first_of[want + 1]};
+    auto [a, b] = std::equal_range(sorted_keys.begin(), sorted_keys.end(), want);
+    return {static_cast<std::size_t>(a - sorted_keys.begin()), static_cast<std::size_t>(b - sorted_keys.begin())};
+  };
 
   // Which global points are owned here, and at which slot.
   std::vector<std::uint32_t> slot_of(n, no_bond);
   for (std::size_t i = 0; i < owned_; ++i) slot_of[owned_global[i]] = static_cast<std::uint32_t>(i);
 
-  // Pairs per owned point (global partner indices first), in parallel, then flattened in point order.
+  // Each thread lists the pairs of one contiguous range of owned points (static schedule) in its own buffer,
+  // in point order, partners by global index; the buffers joined in thread order are the lists in point order.
   struct Pair {
     std::uint32_t global, bond;
     double distance, coefficient, mu;
   };
-  std::vector<std::vector<Pair>> found(owned_);
+  const int threads = omp_get_max_threads();
+  std::vector<std::vector<Pair>> found(static_cast<std::size_t>(threads));
+  std::vector<std::uint64_t> count(owned_ + 1, 0);
   const bool identity = local_global.empty();
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::size_t i = 0; i < owned_; ++i) {
-    const std::uint32_t gi = owned_global[i];
-    const Vec3 yi{y[3 * gi], y[3 * gi + 1], y[3 * gi + 2]};
-    const Vec3 xi = all.x.get(gi);
-    const std::size_t bi = static_cast<std::size_t>(all.block[gi]);
-    const std::int64_t cx = cell_of(gi, 0), cy = cell_of(gi, 1), cz = cell_of(gi, 2);
-    const std::uint64_t begin = bonds.offsets[i], end = bonds.offsets[i + 1];
-    std::vector<Pair>& mine = found[i];
-    for (std::int64_t ox = -1; ox <= 1; ++ox)
-      for (std::int64_t oy = -1; oy <= 1; ++oy)
-        for (std::int64_t oz = -1; oz <= 1; ++oz) {
-          const std::uint64_t want = cell_key(cx + ox, cy + oy, cz + oz);
-          auto [first, last] = std::equal_range(sorted_keys.begin(), sorted_keys.end(), want);
-          for (auto it = first; it != last; ++it) {
-            const std::uint32_t gj = order[static_cast<std::size_t>(it - sorted_keys.begin())];
-            if (gj == gi) continue;
-            const double dx = y[3 * gj] - yi.x, dy = y[3 * gj + 1] - yi.y, dz = y[3 * gj + 2] - yi.z;
-            const double reference = norm(all.x.get(gj) - xi);
-            const double d = std::min(reference_fraction_ * reference, distance_factor_ * (radius_[gi] + radius_[gj]));
-            const double reach = d + skin_;
-            if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
-            // The bond i → j, if any: the family is in increasing global index.
-            std::uint32_t bond = no_bond;
-            std::uint64_t lo = begin, hi = end;
-            while (lo < hi) {
-              const std::uint64_t mid = lo + (hi - lo) / 2;
-              const std::uint32_t g = identity ? bonds.neighbors[mid] : local_global[bonds.neighbors[mid]];
-              if (g < gj) lo = mid + 1;
-              else hi = mid;
+#pragma omp parallel
+  {
+    std::vector<Pair>& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < owned_; ++i) {
+      const std::uint32_t gi = owned_global[i];
+      const Vec3 yi{y[3 * gi], y[3 * gi + 1], y[3 * gi + 2]};
+      const Vec3 xi = all.x.get(gi);
+      const std::size_t bi = static_cast<std::size_t>(all.block[gi]);
+      const std::int64_t cx = cell_of(gi, 0), cy = cell_of(gi, 1), cz = cell_of(gi, 2);
+      const std::uint64_t begin = bonds.offsets[i], end = bonds.offsets[i + 1];
+      const std::size_t before = mine.size();
+      for (std::int64_t ox = -1; ox <= 1; ++ox)
+        for (std::int64_t oy = -1; oy <= 1; ++oy)
+          for (std::int64_t oz = -1; oz <= 1; ++oz) {
+            const auto [first, last] = cell_range(key_of(cx + ox, cy + oy, cz + oz));
+            for (std::size_t it = first; it < last; ++it) {
+              const std::uint32_t gj = order[it];
+              if (gj == gi) continue;
+              const double dx = y[3 * gj] - yi.x, dy = y[3 * gj + 1] - yi.y, dz = y[3 * gj + 2] - yi.z;
+              const double reach = distance_factor_ * (radius_[gi] + radius_[gj]) + skin_;
+              const double r2 = dx * dx + dy * dy + dz * dz;
+              if (r2 >= reach * reach) continue;
+              const double d = std::min(reference_fraction_ * norm(all.x.get(gj) - xi), distance_factor_ * (radius_[gi] + radius_[gj]));
+              if (r2 >= (d + skin_) * (d + skin_)) continue;
+              // The bond i → j, if any: the family is in increasing global index.
+              std::uint32_t bond = no_bond;
+              std::uint64_t a = begin, b = end;
+              while (a < b) {
+                const std::uint64_t mid = a + (b - a) / 2;
+                const std::uint32_t g = identity ? bonds.neighbors[mid] : local_global[bonds.neighbors[mid]];
+                if (g < gj) a = mid + 1;
+                else b = mid;
+              }
+              if (a < end && (identity ? bonds.neighbors[a] : local_global[bonds.neighbors[a]]) == gj) {
+                if (!damage_) continue;  // a bond that cannot break: never in contact
+                bond = static_cast<std::uint32_t>(a);
+              }
+              const std::size_t bj = static_cast<std::size_t>(all.block[gj]);
+              mine.push_back({gj, bond, d, stiffness_[bi * blocks_ + bj] * all.volume[gj],
+                              friction_.empty() ? 0.0 : friction_[bi * blocks_ + bj]});
             }
-            if (lo < end && (identity ? bonds.neighbors[lo] : local_global[bonds.neighbors[lo]]) == gj) {
-              if (!damage_) continue;  // a bond that cannot break: never in contact
-              bond = static_cast<std::uint32_t>(lo);
-            }
-            const std::size_t bj = static_cast<std::size_t>(all.block[gj]);
-            mine.push_back({gj, bond, d, stiffness_[bi * blocks_ + bj] * all.volume[gj],
-                            friction_.empty() ? 0.0 : friction_[bi * blocks_ + bj]});
           }
-        }
-    std::sort(mine.begin(), mine.end(), [](const Pair& a, const Pair& b) { return a.global < b.global; });
+      std::sort(mine.begin() + static_cast<std::ptrdiff_t>(before), mine.end(),
+                [](const Pair& p, const Pair& q) { return p.global < q.global; });
+      count[i + 1] = mine.size() - before;
+    }
   }
 
   // Remote partners: grouped by owner rank, increasing global index within a rank.
@@ -171,7 +212,7 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
   }
 
   offsets_.assign(owned_ + 1, 0);
-  for (std::size_t i = 0; i < owned_; ++i) offsets_[i + 1] = offsets_[i] + found[i].size();
+  for (std::size_t i = 0; i < owned_; ++i) offsets_[i + 1] = offsets_[i] + count[i + 1];
   const std::size_t total = offsets_[owned_];
   PERIDOT_REQUIRE(bonds.num_bonds() < no_bond, "too many bonds on one rank for the contact list's bond indices");
   partner_.resize(total);
@@ -179,10 +220,9 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
   distance_.resize(total);
   coefficient_.resize(total);
   mu_.resize(friction_.empty() ? 0 : total);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < owned_; ++i) {
-    std::uint64_t k = offsets_[i];
-    for (const Pair& p : found[i]) {
+  std::size_t k = 0;
+  for (const std::vector<Pair>& pairs : found)
+    for (const Pair& p : pairs) {
       partner_[k] = slot_of[p.global];
       bond_[k] = p.bond;
       distance_[k] = p.distance;
@@ -190,11 +230,12 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
       if (!mu_.empty()) mu_[k] = p.mu;
       ++k;
     }
-  }
+  build_seconds_ += omp_get_wtime() - start;
 }
 
 void ShortRangeContact::compute(const double* y, const double* v, const std::vector<std::uint8_t>& broken,
                                 VectorField& b) const {
+  const double start = omp_get_wtime();
   double* out = b.data();
   const bool friction = !mu_.empty() && v != nullptr;
 #pragma omp parallel for schedule(dynamic, 512)
@@ -225,6 +266,7 @@ void ShortRangeContact::compute(const double* y, const double* v, const std::vec
     }
     out[3 * i] += fx, out[3 * i + 1] += fy, out[3 * i + 2] += fz;
   }
+  compute_seconds_ += omp_get_wtime() - start;
 }
 
 double ShortRangeContact::point_energy_density(std::size_t i, const double* y, const std::vector<std::uint8_t>& broken) const {

@@ -59,9 +59,12 @@ class ShortRangeContact {
   double point_energy_density(std::size_t i, const double* y, const std::vector<std::uint8_t>& broken) const;
   bool has_friction() const { return !friction_.empty(); }
 
-  /// Pairs in the list, and list builds so far (for the benchmarks).
+  /// Pairs in the list, list builds so far, and the seconds spent in builds and in compute (for the run log
+  /// and the benchmarks).
   std::size_t pairs() const { return partner_.size(); }
   std::size_t builds() const { return builds_; }
+  double build_seconds() const { return build_seconds_; }
+  double compute_seconds() const { return compute_seconds_; }
 
  private:
   static constexpr std::uint32_t no_bond = 0xffffffffu;
@@ -73,6 +76,8 @@ class ShortRangeContact {
   double distance_factor_ = 1.35, reference_fraction_ = 0.9, skin_ = 0, cutoff_ = 0;
   bool damage_ = false;
   std::size_t owned_ = 0, builds_ = 0;
+  double build_seconds_ = 0;
+  mutable double compute_seconds_ = 0;
   VectorField u_built_;             ///< the owned points' displacement at the last build
   // The pair lists in compressed rows over the owned points (structure of arrays).
   std::vector<std::uint64_t> offsets_;

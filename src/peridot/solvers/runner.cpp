@@ -311,6 +311,9 @@ void run_problem(const Problem& problem, const RunOptions& options) {
   progress.update(sim, true);
   log.line(fmt::format("done: {} steps to t = {:.6g} s in {:.2f} s", sim.state().step, sim.state().time,
                        progress.elapsed()));
+  if (const ShortRangeContact* contact = sim.short_range())
+    log.line(fmt::format("contact: {} pair-list builds in {:.2f} s, pair forces {:.2f} s; {} pairs listed at the end (rank 0)",
+                         contact->builds(), contact->build_seconds(), contact->compute_seconds(), contact->pairs()));
 }
 
 }  // namespace peridot
