@@ -235,14 +235,15 @@ int main(int argc, char** argv) {
       "\"u_exchange_s\": %.3g, \"messages_per_step_per_rank\": %.1f, "
       "\"bytes_per_step_per_rank\": %.0f, \"ghosts_per_rank\": %.0f, \"peak_rss_mib_all_ranks\": %.0f}, "
       "\"kinetic_energy\": %.17g, \"strain_energy\": %.17g, \"dissipated_energy\": %.17g, \"max_damage\": %.6g, "
-      "\"contact_pairs\": %.0f, \"contact_list_builds\": %.0f}\n",
+      "\"contact_pairs\": %.0f, \"contact_list_builds\": %.0f, \"contact_build_s\": %.4f, \"contact_force_s\": %.4f}\n",
       o.model.c_str(), points, bonds, o.steps, comm.size(), o.threads, sim.time_step(), setup_s, run_s, run_cpu_s,
       updates_per_s_core, bonds * o.steps / run_cpu_s / comm.size(),
       neighbor_bytes + state_bytes + offset_bytes + history_bytes, neighbor_bytes, state_bytes, offset_bytes, history_bytes,
       rss_mib, run_s > 0 ? comm_s / run_s : 0.0, run_s > 0 ? comm_min_s / run_s : 0.0, comm_s, exchange_s, messages, bytes, ghosts, peak_rss_sum, totals.kinetic_energy,
       totals.strain_energy, totals.dissipated_energy, totals.max_damage,
       sim.short_range() ? static_cast<double>(sim.short_range()->pairs()) : 0.0,
-      sim.short_range() ? static_cast<double>(sim.short_range()->builds()) : 0.0);
+      sim.short_range() ? static_cast<double>(sim.short_range()->builds()) : 0.0,
+      sim.short_range() ? sim.short_range()->build_seconds() : 0.0, sim.short_range() ? sim.short_range()->compute_seconds() : 0.0);
 
   if (!o.dump.empty()) {  // final state by lattice index, for comparison with LAMMPS
     // The last column is the fraction of a point's bonds that are broken, unweighted: LAMMPS's damage/atom

@@ -59,8 +59,8 @@ class ShortRangeContact {
   double point_energy_density(std::size_t i, const double* y, const std::vector<std::uint8_t>& broken) const;
   bool has_friction() const { return !friction_.empty(); }
 
-  /// Pairs in the list, list builds so far, and the seconds spent in builds and in compute (for the run log
-  /// and the benchmarks).
+  /// Pairs in the list, list builds so far, and the seconds spent in builds and in place and compute (for the
+  /// run log and the benchmarks).
   std::size_t pairs() const { return partner_.size(); }
   std::size_t builds() const { return builds_; }
   double build_seconds() const { return build_seconds_; }
