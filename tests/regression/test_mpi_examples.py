@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Every example deck runs unchanged under mpirun: the first steps of each examples/*/deck*.yaml (its
-end_time replaced by a step count, a relaxation's tolerance loosened and its load steps cut to the first 4
+end_time or step count replaced by a short step count, a relaxation's tolerance loosened and its load steps cut to the first 4
 when it has more than 16, so that CI stays short; every other line as shipped) on 2 ranks give
 every byte of the Exodus file and the history of a serial run. The full-length runs are listed in
 docs/parallel.md."""
@@ -49,8 +49,8 @@ def main():
                 short = re.sub(r"(?m)^(\s+)end_time: ([0-9.eE+-]+)",
                                lambda m: f"{m.group(1)}end_time: {float(m.group(2)) * FIRST_LOAD_STEPS / steps!r}", short)
         else:
-            short, count = re.subn(r"(?m)^(\s+)end_time: .*$", rf"\g<1>num_steps: {STEPS}", text)
-            check(count == 1, f"{name}: end_time replaced by num_steps: {STEPS}")
+            short, count = re.subn(r"(?m)^(\s+)(end_time|num_steps): .*$", rf"\g<1>num_steps: {STEPS}", text)
+            check(count == 1, f"{name}: end_time (or num_steps) replaced by num_steps: {STEPS}")
         path = os.path.join(a.work, name + ".yaml")
         open(path, "w").write(short)
         runs = {}
