@@ -1,4 +1,4 @@
-// Rigid frictionless wall (contact/rigid_wall.hpp): an elastic correspondence cube thrown at a fixed wall
+// Rigid frictionless wall (a plane among the rigid bodies, contact/rigid_body.hpp): an elastic correspondence cube thrown at a fixed wall
 // bounces; the momentum it gains equals the impulse of the wall force integrated over the steps
 // (trapezoidal, as velocity Verlet applies it), the energy balances with the wall's work, and the points
 // stay in front of the wall to a small fraction of the spacing.

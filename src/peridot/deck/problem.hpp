@@ -164,8 +164,8 @@ struct TractionSpec {
 /// correspondence bodies that touch it, also as a symmetry plane (correspondence/mirror_bonds.hpp).
 enum class WallContactKind { penalty, symmetry };
 
-/// A rigid, frictionless plane that the points cannot cross (contact/rigid_wall.hpp): penalty contact on
-/// every point behind it. The plane moves along its normal at `speed`.
+/// A rigid, frictionless plane that the points cannot cross (a plane among the rigid bodies,
+/// contact/rigid_body.hpp): penalty contact on every point behind it. The plane moves along its normal at `speed`.
 struct RigidWallSpec {
   std::string name;
   SourcePos pos;
