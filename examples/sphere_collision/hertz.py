@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Two elastic spheres colliding head on (deck.yaml) against Hertz's theory, at several resolutions.
 
-    hertz.py --peridot PATH [--ratios 10,15,20] [--threads N] [--out DIR] [--check TOL]
+    hertz.py --peridot PATH [--ratios 10,15,20] [--threads N] [--out DIR] [--check TOL] [--reuse]
 
 Hertz, for two spheres of radius R, Young's modulus E, Poisson ratio ν (1/4 for bond-based PMB), density ρ, closing
 at relative speed v: with E* = E / (2(1 − ν²)), R* = R/2, m* = m/2 (m = 4πR³ρ/3), the largest approach is
@@ -74,18 +74,17 @@ def time_above(t, force, fraction):
     return start, end
 
 
-def run(peridot, ratio, out, threads, pole, reuse=False):
+def run(peridot, ratio, out, threads, reuse=False):
     spacing = R / ratio
     text = (HERE / "deck.yaml").read_text()
     text = text.replace("spacing: 0.5 mm             # R/dx = 10", f"spacing: {spacing * 1e3:.10g} mm")
-    # The surfaces about 3 mm apart; the centres on lattice planes (multiples of Δx: a flat facet of points at
-    # each pole) or, with pole == "point", on lattice points ((i + ½)Δx: one point at each pole).
-    half = 0.5 if pole == "point" else 0.0
-    centre = (round((R + 1.5e-3) / spacing - half) + half) * spacing
-    off = half * spacing * 1e3
-    text = text.replace("center: [-6.5 mm, 0, 0]", f"center: [{-centre * 1e3:.10g} mm, {off:.10g} mm, {off:.10g} mm]")
-    text = text.replace("center: [6.5 mm, 0, 0]", f"center: [{centre * 1e3:.10g} mm, {off:.10g} mm, {off:.10g} mm]")
-    name = f"ratio{ratio:g}_{pole}"
+    # The surfaces about 3 mm apart, the centres on lattice planes (multiples of Δx), so that the spheres are
+    # mirror images. (Centres on lattice points instead leave one lone point at each pole, which the other
+    # sphere pushes in: worse.)
+    centre = round((R + 1.5e-3) / spacing) * spacing
+    text = text.replace("center: [-6.5 mm, 0, 0]", f"center: [{-centre * 1e3:.10g} mm, 0, 0]")
+    text = text.replace("center: [6.5 mm, 0, 0]", f"center: [{centre * 1e3:.10g} mm, 0, 0]")
+    name = f"ratio{ratio:g}"
     text = text.replace("directory: out", f"directory: {out / name}")
     deck = out / f"{name}.yaml"
     deck.write_text(text)
@@ -106,8 +105,6 @@ def main():
     ap.add_argument("--out", default=str(HERE / "out"))
     ap.add_argument("--check", type=float)
     ap.add_argument("--reuse", action="store_true", help="analyse the histories already in DIR")
-    ap.add_argument("--pole", choices=["facet", "point"], default="facet",
-                    help="centres on lattice planes (a flat facet at each pole) or on lattice points (one pole point)")
     a = ap.parse_args()
     out = pathlib.Path(a.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
@@ -124,7 +121,7 @@ def main():
     fig, ax = plt.subplots(figsize=(7, 4.2))
     errors = None
     for ratio in [float(r) for r in a.ratios.split(",")]:
-        t, force, momentum, gap = run(a.peridot, ratio, out, a.threads, a.pole, a.reuse)
+        t, force, momentum, gap = run(a.peridot, ratio, out, a.threads, a.reuse)
         peak = force.max()
         start, end = time_above(t, force, THRESHOLD)
         errors = (peak / fmax - 1, (end - start) / above_hertz - 1)
