@@ -133,6 +133,15 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
     return {static_cast<std::size_t>(a - sorted_keys.begin()), static_cast<std::size_t>(b - sorted_keys.begin())};
   };
 
+  // The positions and radii in cell order: the scan below reads them contiguously.
+  std::vector<double> sorted_y(3 * n), sorted_radius(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = order[k];
+    for (std::size_t d = 0; d < 3; ++d) sorted_y[3 * k + d] = y[3 * i + d];
+    sorted_radius[k] = radius_[i];
+  }
+
   // Which global points are owned here, and at which slot.
   std::vector<std::uint32_t> slot_of(n, no_bond);
   for (std::size_t i = 0; i < owned_; ++i) slot_of[owned_global[i]] = static_cast<std::uint32_t>(i);
@@ -150,6 +159,8 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
 #pragma omp parallel
   {
     std::vector<Pair>& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
+    // The bond i → j of the point at hand, by j's global index (set from i's family, cleared after it).
+    std::vector<std::uint32_t> bond_to(n, no_bond);
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < owned_; ++i) {
       const std::uint32_t gi = owned_global[i];
@@ -159,37 +170,32 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
       const std::int64_t cx = cell_of(gi, 0), cy = cell_of(gi, 1), cz = cell_of(gi, 2);
       const std::uint64_t begin = bonds.offsets[i], end = bonds.offsets[i + 1];
       const std::size_t before = mine.size();
+      if (damage_)
+        for (std::uint64_t b = begin; b < end; ++b)
+          bond_to[identity ? bonds.neighbors[b] : local_global[bonds.neighbors[b]]] = static_cast<std::uint32_t>(b);
+      else
+        for (std::uint64_t b = begin; b < end; ++b) bond_to[identity ? bonds.neighbors[b] : local_global[bonds.neighbors[b]]] = 0;
       for (std::int64_t ox = -1; ox <= 1; ++ox)
         for (std::int64_t oy = -1; oy <= 1; ++oy)
           for (std::int64_t oz = -1; oz <= 1; ++oz) {
             const auto [first, last] = cell_range(key_of(cx + ox, cy + oy, cz + oz));
             for (std::size_t it = first; it < last; ++it) {
-              const std::uint32_t gj = order[it];
-              if (gj == gi) continue;
-              const double dx = y[3 * gj] - yi.x, dy = y[3 * gj + 1] - yi.y, dz = y[3 * gj + 2] - yi.z;
-              const double reach = distance_factor_ * (radius_[gi] + radius_[gj]) + skin_;
+              const double dx = sorted_y[3 * it] - yi.x, dy = sorted_y[3 * it + 1] - yi.y, dz = sorted_y[3 * it + 2] - yi.z;
+              const double reach = distance_factor_ * (radius_[gi] + sorted_radius[it]) + skin_;
               const double r2 = dx * dx + dy * dy + dz * dz;
               if (r2 >= reach * reach) continue;
+              const std::uint32_t gj = order[it];
+              if (gj == gi) continue;
               const double d = std::min(reference_fraction_ * norm(all.x.get(gj) - xi), distance_factor_ * (radius_[gi] + radius_[gj]));
               if (r2 >= (d + skin_) * (d + skin_)) continue;
-              // The bond i → j, if any: the family is in increasing global index.
-              std::uint32_t bond = no_bond;
-              std::uint64_t a = begin, b = end;
-              while (a < b) {
-                const std::uint64_t mid = a + (b - a) / 2;
-                const std::uint32_t g = identity ? bonds.neighbors[mid] : local_global[bonds.neighbors[mid]];
-                if (g < gj) a = mid + 1;
-                else b = mid;
-              }
-              if (a < end && (identity ? bonds.neighbors[a] : local_global[bonds.neighbors[a]]) == gj) {
-                if (!damage_) continue;  // a bond that cannot break: never in contact
-                bond = static_cast<std::uint32_t>(a);
-              }
+              const std::uint32_t bond = bond_to[gj];
+              if (!damage_ && bond != no_bond) continue;  // a bond that cannot break: never in contact
               const std::size_t bj = static_cast<std::size_t>(all.block[gj]);
               mine.push_back({gj, bond, d, stiffness_[bi * blocks_ + bj] * all.volume[gj],
                               friction_.empty() ? 0.0 : friction_[bi * blocks_ + bj]});
             }
           }
+      for (std::uint64_t b = begin; b < end; ++b) bond_to[identity ? bonds.neighbors[b] : local_global[bonds.neighbors[b]]] = no_bond;
       std::sort(mine.begin() + static_cast<std::ptrdiff_t>(before), mine.end(),
                 [](const Pair& p, const Pair& q) { return p.global < q.global; });
       count[i + 1] = mine.size() - before;
