@@ -62,10 +62,6 @@ RigidBodies::RigidBodies(const Problem& problem, const ModelContext& model) : di
   move_to(0.0);
 }
 
-bool RigidBodies::any_free() const {
-  return std::any_of(bodies_.begin(), bodies_.end(), [](const RigidBody& b) { return b.motion == RigidMotionKind::free; });
-}
-
 void RigidBodies::move_to(double t) {
   for (RigidBody& b : bodies_) {
     if (b.motion != RigidMotionKind::prescribed) continue;
@@ -74,7 +70,7 @@ void RigidBodies::move_to(double t) {
       b.velocity = b.wall_speed * b.axis;
       continue;
     }
-    // The velocity by a central difference of the displacement (exact for motions linear in t).
+    // The velocity by a central difference of the displacement (exact for motions up to quadratic in t).
     const double h = 1e-6 * std::max(std::abs(t), 1e-3);
     for (std::size_t c = 0; c < 3; ++c) {
       if (!b.displacement[c]) continue;

@@ -60,7 +60,6 @@ class RigidBodies {
   bool empty() const { return bodies_.empty(); }
   std::size_t size() const { return bodies_.size(); }
   const RigidBody& operator[](std::size_t k) const { return bodies_[k]; }
-  bool any_free() const;
 
   /// Moves the walls and the prescribed bodies to time t (offset and velocity); free bodies keep theirs.
   void move_to(double t);

@@ -36,8 +36,6 @@ class ShortRangeContact {
   ShortRangeContact(const ContactSpec& spec, const Problem& problem, const Discretization& all,
                     const std::vector<MaterialParams>& params, bool damage);
 
-  /// The Verlet skin s (m).
-  double skin() const { return skin_; }
   /// Writes the owned points' positions y = x + u into y (3 per point) and returns whether one of them has
   /// moved more than s/2 since the last build (or none was built): one pass over the points.
   bool place(const VectorField& x, const VectorField& u, std::size_t owned, double* y) const;
