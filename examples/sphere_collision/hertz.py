@@ -17,7 +17,6 @@ import csv
 import math
 import os
 import pathlib
-import re
 import subprocess
 import sys
 
@@ -94,7 +93,7 @@ def run(peridot, ratio, out, threads, reuse=False):
     with open(out / name / "history.csv") as f:
         rows = list(csv.DictReader(f))
     col = lambda key: np.array([float(r[key]) for r in rows])  # noqa: E731
-    return col("time"), col("contact_right_x"), col("momentum_x"), 2 * (centre - R)
+    return col("time"), col("contact_right_x"), col("momentum_x")
 
 
 def main():
@@ -121,7 +120,7 @@ def main():
     fig, ax = plt.subplots(figsize=(7, 4.2))
     errors = None
     for ratio in [float(r) for r in a.ratios.split(",")]:
-        t, force, momentum, gap = run(a.peridot, ratio, out, a.threads, a.reuse)
+        t, force, momentum = run(a.peridot, ratio, out, a.threads, a.reuse)
         peak = force.max()
         start, end = time_above(t, force, THRESHOLD)
         errors = (peak / fmax - 1, (end - start) / above_hertz - 1)

@@ -162,10 +162,12 @@ void RigidBodies::compute(const Discretization& disc, std::size_t n, const Vecto
     contacts.clear();
     // A point's force from each body is added in body order. Static scheduling gives each thread one
     // contiguous range, in thread order, so the threads' lists joined in that order are in point order.
-    std::vector<std::vector<BodyContact>> found(static_cast<std::size_t>(omp_get_max_threads()));
+    std::vector<std::vector<BodyContact>>& found = thread_contacts_;  // kept between steps: no allocation per step
+    found.resize(static_cast<std::size_t>(omp_get_max_threads()));
 #pragma omp parallel
     {
       std::vector<BodyContact>& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
+      mine.clear();
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
         const Vec3 f = force_density(body, disc, u, i);

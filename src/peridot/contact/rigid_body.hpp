@@ -92,6 +92,7 @@ class RigidBodies {
   int dimension_ = 3;
   std::vector<RigidBody> bodies_;
   std::vector<std::vector<BodyContact>> contacts_;
+  std::vector<std::vector<BodyContact>> thread_contacts_;  ///< compute's per-thread lists, reused
   std::vector<double> point_stiffness_;  ///< κ / stiffness_factor per block (N/m⁴)
 };
 

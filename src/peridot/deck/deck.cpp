@@ -351,16 +351,21 @@ struct Parser {
     return std::nullopt;
   }
 
+  /// A box's min and max corners; an error at max unless it exceeds min in every coordinate of the deck.
+  void read_corners(const MapReader& r, const std::string& path, Vec3& lo, Vec3& hi) {
+    lo = r["min"].point;
+    hi = r["max"].point;
+    for (int d = 0; d < p.dimension; ++d)
+      if (r.given("min") && r.given("max") && !(lo[d] < hi[d]))
+        ctx.error(r["max"].pos, path, fmt::format("max must exceed min in every coordinate ({} is not)", "xyz"[d]));
+  }
+
   Shape parse_primitive(std::string_view kind, const Value& v, const std::string& path) {
     MapReader r(ctx, v.node, v.key_pos, path, deck_section("shape." + std::string(kind)).keys);
     Shape s;
     if (kind == "box") {
       s.kind = Shape::Kind::box;
-      s.lo = r["min"].point;
-      s.hi = r["max"].point;
-      for (int d = 0; d < p.dimension; ++d)
-        if (r.given("min") && r.given("max") && !(s.lo[d] < s.hi[d]))
-          ctx.error(r["max"].pos, path, fmt::format("max must exceed min in every coordinate ({} is not)", "xyz"[d]));
+      read_corners(r, path, s.lo, s.hi);
       return s;
     }
     s.kind = kind == "cylinder" ? Shape::Kind::cylinder : kind == "tube" ? Shape::Kind::tube : Shape::Kind::sphere;
@@ -568,39 +573,6 @@ struct Parser {
     p.temperature = std::move(t);
   }
 
-  void parse_rigid_walls(const Value& v) {
-    std::vector<std::string_view> names;
-    for_each_item(v, "rigid_walls", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
-      MapReader r(ctx, node, pos, path, deck_section("rigid_walls[i]").keys);
-      RigidWallSpec w;
-      w.name = r["name"].text;
-      w.pos = pos;
-      w.point = r["point"].point;
-      w.normal = r["normal"].point;
-      w.speed = r["speed"].number;
-      w.stiffness_factor = r["stiffness_factor"].number;
-      w.contact = r["contact"].text == "symmetry" ? WallContactKind::symmetry : WallContactKind::penalty;
-      if (w.contact == WallContactKind::symmetry && w.speed != 0)
-        ctx.error(r["speed"].pos, r.path_of("speed"),
-                  "a wall with contact: symmetry must be at rest (its mirror images would move with it)");
-      if (r.given("normal")) {
-        if (p.dimension <= 2) w.normal.z = 0;
-        if (p.dimension == 1) w.normal.y = 0;
-        if (norm(w.normal) == 0)
-          ctx.error(r["normal"].pos, r.path_of("normal"),
-                    p.dimension == 1 ? "must not be zero (in 1D: its x)" : "must not be zero (in 2D: its x, y must not both be zero)");
-        else
-          w.normal = (1 / norm(w.normal)) * w.normal;
-      }
-      p.rigid_walls.push_back(std::move(w));
-    });
-    for (const RigidWallSpec& w : p.rigid_walls) {
-      if (std::find(names.begin(), names.end(), w.name) != names.end())
-        ctx.error(w.pos, "rigid_walls", fmt::format("two walls are named '{}'", w.name));
-      names.push_back(w.name);
-    }
-  }
-
   /// A unit vector from a point key (in 2D its z, in 1D its y and z dropped); an error when it is zero.
   Vec3 unit_vector(const MapReader& r, std::string_view key) {
     Vec3 n = r[key].point;
@@ -613,6 +585,30 @@ struct Parser {
       return n;
     }
     return (1 / norm(n)) * n;
+  }
+
+  void parse_rigid_walls(const Value& v) {
+    std::vector<std::string_view> names;
+    for_each_item(v, "rigid_walls", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
+      MapReader r(ctx, node, pos, path, deck_section("rigid_walls[i]").keys);
+      RigidWallSpec w;
+      w.name = r["name"].text;
+      w.pos = pos;
+      w.point = r["point"].point;
+      w.normal = unit_vector(r, "normal");
+      w.speed = r["speed"].number;
+      w.stiffness_factor = r["stiffness_factor"].number;
+      w.contact = r["contact"].text == "symmetry" ? WallContactKind::symmetry : WallContactKind::penalty;
+      if (w.contact == WallContactKind::symmetry && w.speed != 0)
+        ctx.error(r["speed"].pos, r.path_of("speed"),
+                  "a wall with contact: symmetry must be at rest (its mirror images would move with it)");
+      p.rigid_walls.push_back(std::move(w));
+    });
+    for (const RigidWallSpec& w : p.rigid_walls) {
+      if (std::find(names.begin(), names.end(), w.name) != names.end())
+        ctx.error(w.pos, "rigid_walls", fmt::format("two walls are named '{}'", w.name));
+      names.push_back(w.name);
+    }
   }
 
   void parse_rigid_bodies(const Value& v) {
@@ -635,11 +631,7 @@ struct Parser {
           if (kind == "cylinder") b.axis = unit_vector(s, "axis"), b.length = s["length"].number;
         } else if (kind == "box") {
           b.shape = RigidShapeKind::box;
-          b.lo = s["min"].point;
-          b.hi = s["max"].point;
-          for (int d = 0; d < p.dimension; ++d)
-            if (s.given("min") && s.given("max") && !(b.lo[d] < b.hi[d]))
-              ctx.error(s["max"].pos, s.path_of("max"), fmt::format("max must exceed min in every coordinate ({} is not)", "xyz"[d]));
+          read_corners(s, s.path_of("max"), b.lo, b.hi);
         } else {
           b.shape = RigidShapeKind::plane;
           b.center = s["point"].point;

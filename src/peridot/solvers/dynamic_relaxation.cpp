@@ -170,7 +170,7 @@ namespace {
 /// What unsupported_fragment sums over a fragment's points, as doubles so that ranks can gather it.
 struct FragmentSum {
   double label = 0, points = 0;
-  double supported[3] = {0, 0, 0};  ///< 1 where some point has a prescribed dof or a wall along that axis
+  double supported[3] = {0, 0, 0};  ///< 1 where some point has a prescribed dof or a contact force along that axis
   double force[3] = {0, 0, 0};      ///< Σ b V
   double magnitude = 0;             ///< Σ |b V|: a balanced load's net force is round-off of this
   double named_here = 0, x[3] = {0, 0, 0};  ///< the point that names it (label = its input id), when counted here
@@ -197,7 +197,7 @@ std::string DynamicRelaxation::unsupported_fragment() {
   const State& state = sim_.state();
   const Discretization& disc = sim_.discretization();
   const auto& kind = sim_.loads().dof_kinds();
-  const bool body = sim_.loads().has_body_force(), walls = sim_.has_contact();
+  const bool body = sim_.loads().has_body_force(), contact = sim_.has_contact();
   std::map<double, FragmentSum> local;
   for (std::size_t i = 0; i < sim_.num_owned(); ++i) {
     FragmentSum& f = local[state.fragment[i]];
@@ -205,7 +205,7 @@ std::string DynamicRelaxation::unsupported_fragment() {
     f.points += 1;
     for (int d = 0; d < 3; ++d) {
       const std::size_t k = 3 * i + static_cast<std::size_t>(d);
-      if (kind[k] != DofKind::free || (walls && sim_.contact_force().data()[k] != 0)) f.supported[d] = 1;
+      if (kind[k] != DofKind::free || (contact && sim_.contact_force().data()[k] != 0)) f.supported[d] = 1;
       if (!body) continue;
       f.force[d] += state.body_force.data()[k] * disc.volume[i];
       f.magnitude += std::abs(state.body_force.data()[k]) * disc.volume[i];
@@ -454,14 +454,14 @@ void DynamicRelaxation::solve_and_commit(double dt) {
   set_step_velocity();
   sim_.commit(dt);
 
-  // External work of the change, trapezoidal: the supports' −f V on prescribed dofs, the body and wall
+  // External work of the change, trapezoidal: the supports' −f V on prescribed dofs, the body and contact
   // forces on free ones.
   double* work = sim_.external_work().data();
   const double* volume = disc.volume.data();
   const double* u = state.u.data();
   const double* u0 = committed_u_.data();
   const bool body = sim_.loads().has_body_force();
-  const bool walls = sim_.has_contact();
+  const bool contact = sim_.has_contact();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < owned; ++i)
     for (std::size_t q = 3 * i; q < 3 * i + 3; ++q) {
@@ -471,7 +471,7 @@ void DynamicRelaxation::solve_and_commit(double dt) {
       } else {
         double applied = 0;
         if (body) applied += body_before.data()[q] + state.body_force.data()[q];
-        if (walls) applied += contact_before.data()[q] + sim_.contact_force().data()[q];
+        if (contact) applied += contact_before.data()[q] + sim_.contact_force().data()[q];
         work[i] += 0.5 * applied * volume[i] * du;
       }
     }

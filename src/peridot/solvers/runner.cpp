@@ -127,7 +127,8 @@ class RunLog {
 
 class History {
  public:
-  History(const fs::path& path, Simulation& sim) : sim_(sim) {
+  History(const fs::path& path, Simulation& sim)
+      : sim_(sim), contact_energy_(!sim.problem().rigid_bodies.empty() || sim.problem().contact) {
     const Problem& problem = sim.problem();
     std::vector<std::string> columns = {"time", "step", "kinetic_energy", "strain_energy", "external_work",
                                         "momentum_x", "momentum_y", "momentum_z", "max_damage", "dissipated_energy",
@@ -135,7 +136,7 @@ class History {
     if (sim.has_correspondence()) columns.push_back("hourglass_work");
     if (sim.any_damage()) columns.push_back("broken_fraction");
     for (const std::string& name : sim.integrator().history_columns()) columns.push_back(name);
-    if (sim.has_contact() && (!problem.rigid_bodies.empty() || problem.contact)) columns.push_back("contact_energy");
+    if (contact_energy_) columns.push_back("contact_energy");
     if (problem.contact)
       for (const BodySpec& body : problem.bodies)
         for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("contact_" + body.name + axis);
@@ -169,8 +170,7 @@ class History {
     if (sim_.has_correspondence()) row.push_back(t.hourglass_work);
     if (sim_.any_damage()) row.push_back(t.broken_fraction);
     for (double value : sim_.integrator().history_values()) row.push_back(value);
-    const Problem& problem = sim_.problem();
-    if (sim_.has_contact() && (!problem.rigid_bodies.empty() || problem.contact)) row.push_back(t.contact_energy);
+    if (contact_energy_) row.push_back(t.contact_energy);
     for (const Vec3& force : t.body_contact_force) row.insert(row.end(), {force.x, force.y, force.z});
     for (std::size_t k = 0; k < t.rigid_force.size(); ++k) {
       const RigidBody& body = sim_.rigid_bodies()[k];
@@ -201,6 +201,8 @@ class History {
     return best;
   }
   Simulation& sim_;
+  /// Decks with rigid bodies or short-range contact have a contact_energy column (walls alone keep the old columns).
+  bool contact_energy_ = false;
   std::vector<const NodeSet*> reaction_sets_;
   std::vector<std::pair<std::size_t, std::string>> probes_;
   std::unique_ptr<CsvWriter> writer_;
