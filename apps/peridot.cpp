@@ -44,15 +44,22 @@ int main(int argc, char** argv) {
   bool quiet = false, markdown = false;
   std::string output_dir, model;
 
+  // More threads than a few per core only slows a run down; far more exhausts the machine.
+  const int max_threads = 8 * omp_get_num_procs();
+  const auto thread_count = CLI::Range(1, max_threads);
   CLI::App* run = app.add_subcommand("run", "run a deck");
   run->add_option("deck", deck, "the YAML deck")->required();
-  run->add_option("-t,--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)");
+  run->add_option("-t,--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")->check(thread_count);
   run->add_flag("-q,--quiet", quiet, "no progress line and no log on standard output");
   run->add_option("-o,--output-dir", output_dir, "write the outputs here instead of the deck's output.directory");
 
   CLI::App* check = app.add_subcommand("check", "validate a deck and describe the run without running it");
   check->add_option("deck", deck, "the YAML deck")->required();
-  check->add_option("-t,--threads", threads, "OpenMP threads");
+  check->add_option("-t,--threads", threads, "OpenMP threads")->check(thread_count);
+  std::uint64_t max_memory = 0;
+  for (CLI::App* command : {run, check})
+    command->add_option("--max-memory", max_memory, "refuse decks whose points and bonds need more (4GiB, 500MB; default: the machine's memory)")
+        ->transform(CLI::AsSizeValue(false));
 
   CLI::App* info = app.add_subcommand("info", "list every model, key, unit and default");
   info->add_flag("--markdown", markdown, "print Markdown: docs/deck.md, or docs/models/NAME.md with --model");
@@ -60,7 +67,12 @@ int main(int argc, char** argv) {
   info->add_option("--model", model, "print the documentation page of this material model")
       ->check(CLI::IsMember(std::vector<std::string>(models.begin(), models.end())));
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help is a "parse error" that succeeds; every real one is a usage error, reported like a deck's.
+    return app.exit(e) == 0 ? 0 : exit_input_error;
+  }
   if (threads > 0) omp_set_num_threads(threads);
   // Several ranks on one machine share its cores: one thread per rank unless told otherwise.
   else if (!peridot::Communicator::world().serial() && !std::getenv("OMP_NUM_THREADS")) omp_set_num_threads(1);
@@ -73,6 +85,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     peridot::Problem problem = peridot::load_deck(deck);
+    problem.memory_limit = static_cast<double>(max_memory);
     if (!output_dir.empty()) problem.output.directory = std::filesystem::absolute(output_dir).string();
     if (root)
       for (const peridot::Diagnostic& w : problem.warnings) std::cerr << w.str() << '\n';

@@ -105,6 +105,28 @@ TEST(Cli, CheckDescribesTheRun) {
     EXPECT_NE(result.output.find(expected), std::string::npos) << expected << " missing in\n" << result.output;
 }
 
+// Bad command-line values end like bad decks: exit 2, a message naming the option, nothing written.
+TEST(Cli, BadCommandLineValuesExitTwoAndWriteNothing) {
+  const std::string deck = (source / "tests" / "regression" / "decks" / "exodus_small.yaml").string();
+  const fs::path dir = scratch("command_line");
+  const std::string output = " -o " + (dir / "out").string() + " ";
+  const std::pair<const char*, const char*> cases[] = {{"-t 0", "--threads"},           {"-t -3", "--threads"},
+                                                       {"-t 100000", "--threads"},      {"-t two", "--threads"},
+                                                       {"--max-memory lots", "--max-memory"}, {"--no-such-option", "--no-such-option"}};
+  for (const auto& [option, named] : cases) {
+    const Result result = run("run -q " + std::string(option) + output + deck);
+    EXPECT_EQ(result.status, 2) << option << "\n" << result.output;
+    EXPECT_NE(result.output.find(named), std::string::npos) << option << "\n" << result.output;
+  }
+  // A memory limit below what the deck's points and bonds need: refused with the estimate, at the body.
+  const Result small = run("run -q --max-memory 10KiB" + output + deck);
+  EXPECT_EQ(small.status, 2) << small.output;
+  EXPECT_NE(small.output.find("allowed by --max-memory"), std::string::npos) << small.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  EXPECT_EQ(run("check --max-memory 1GiB " + deck).status, 0);
+  EXPECT_EQ(run("run --help").status, 0);
+}
+
 TEST(Cli, InfoListsModelsAndKeys) {
   const Result result = run("info");
   EXPECT_EQ(result.status, 0);

@@ -36,7 +36,7 @@ RigidBodies::RigidBodies(const Problem& problem, const ModelContext& model) : di
     if (s.shape == RigidShapeKind::box) b.center = 0.5 * (s.lo + s.hi), b.half = 0.5 * (s.hi - s.lo);
     b.motion = s.motion;
     for (std::size_t c = 0; c < 3; ++c)
-      if (s.displacement[c]) b.displacement[c].emplace(*s.displacement[c]);
+      if (s.displacement[c]) b.displacement[c].emplace(*s.displacement[c]).at_start(0, 0, 0);
     b.mass = s.mass;
     b.velocity = s.velocity;
     b.stiffness_factor = s.stiffness_factor;

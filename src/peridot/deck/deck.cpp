@@ -32,6 +32,14 @@ struct HorizonInput {
   bool given() const { return horizon || factor; }
 };
 
+/// The text of `map[key]` when it is a scalar, else "". A missing key of a const node is an invalid node that
+/// throws when asked its type, so presence is asked first.
+std::string scalar_at(const YAML::Node& map, const char* key) {
+  if (!map.IsMap()) return {};
+  const YAML::Node value = map[key];
+  return value.IsDefined() && value.IsScalar() ? value.Scalar() : std::string();
+}
+
 /// "pmb, thermoviscoelastic": the models with a 1D form.
 std::string one_dimensional_models() {
   std::vector<std::string_view> names;
@@ -100,8 +108,8 @@ struct Parser {
   /// The dimension decides which keys are allowed everywhere, so it is read before anything else.
   void peek_dimension(const YAML::Node& discretization) {
     if (!discretization.IsMap()) return;
-    const YAML::Node& d = discretization["dimension"];
-    if (d.IsScalar() && (d.Scalar() == "1" || d.Scalar() == "2" || d.Scalar() == "3")) ctx.dimension = std::stoi(d.Scalar());
+    const std::string d = scalar_at(discretization, "dimension");
+    if (d == "1" || d == "2" || d == "3") ctx.dimension = std::stoi(d);
   }
 
   void parse_discretization(const Value& v) {
@@ -155,7 +163,7 @@ struct Parser {
   void parse_materials(const Value& v) {
     for_each_named(v, "materials", [&](const std::string& name, const SourcePos& pos, const YAML::Node& node,
                                        const std::string& path) {
-      const ModelInfo* model = node.IsMap() && node["model"].IsScalar() ? find_model(node["model"].Scalar()) : nullptr;
+      const ModelInfo* model = find_model(scalar_at(node, "model"));
       MapReader r(ctx, node, pos, path, model ? material_keys(*model) : common_material_keys());
       MaterialSpec m;
       m.name = name;
@@ -389,6 +397,7 @@ struct Parser {
   // -- bodies, pre-cracks, node sets -----------------------------------------------------------
 
   void parse_bodies(const Value& v) {
+    if (v.node.IsMap() && v.node.size() == 0) ctx.error(v.pos, "bodies", "no body is given; a deck needs at least one");
     std::vector<std::string_view> materials = names_of(p.materials);
     for_each_named(v, "bodies", [&](const std::string& name, const SourcePos& pos, const YAML::Node& node,
                                     const std::string& path) {

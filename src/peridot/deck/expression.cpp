@@ -1,8 +1,10 @@
 #include "peridot/deck/expression.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
 #include <muParser.h>
 
 namespace peridot {
@@ -67,6 +69,14 @@ double ScalarFunction::operator()(double x, double y, double z, double t) const 
   detail::CompiledExpression& c = *compiled_;
   c.x = x, c.y = y, c.z = z, c.t = t;
   return c.parser.Eval();
+}
+
+double ScalarFunction::at_start(double x, double y, double z) const {
+  const double value = (*this)(x, y, z, 0.0);
+  if (!std::isfinite(value))
+    throw InputError(expression_.pos, fmt::format("expression '{}' is {} at t = 0 at ({:g}, {:g}, {:g}) m",
+                                                  expression_.text, value, x, y, z));
+  return value;
 }
 
 }  // namespace peridot

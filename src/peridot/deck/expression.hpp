@@ -34,6 +34,9 @@ class ScalarFunction {
   ~ScalarFunction();
 
   double operator()(double x, double y, double z, double t) const;
+  /// The value at t = 0, for setting up a run: throws InputError at the expression when it is not finite
+  /// there (a deck whose loads start as inf or NaN is refused by `check`, not found in the first step).
+  double at_start(double x, double y, double z) const;
   bool depends_on_time() const { return expression_.depends_on_time; }
   const Expression& expression() const { return expression_; }
 

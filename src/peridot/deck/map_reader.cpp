@@ -241,6 +241,8 @@ void MapReader::check_groups_and_required() {
   std::vector<std::string_view> groups_done;
   for (const KeySpec& spec : keys_) {
     if (!applies(spec)) continue;
+    // Without a valid dimension (already reported) a key of one dimension is not demanded.
+    if (context_.dimension == 0 && (spec.dimension != 0 || spec.min_dimension != 0)) continue;
     std::string_view group = spec.one_of.empty() ? spec.key : spec.one_of;
     if (std::find(groups_done.begin(), groups_done.end(), group) != groups_done.end()) continue;
     groups_done.push_back(group);

@@ -282,6 +282,7 @@ struct Problem {
   PartitionMethod partition = PartitionMethod::rcb;  ///< decomposition.method
   OutputSpec output;
   std::vector<Diagnostic> warnings;  ///< deck problems that do not stop the run (e.g. an unusual horizon)
+  double memory_limit = 0;  ///< bytes the points and bonds may take (0: the machine's memory); command line
 
   const MaterialSpec& material_of(const BodySpec& body) const;
   /// What a point's volume has besides its lattice cell Δx^n: the bar's area A (1D), the thickness h (2D), 1 (3D).

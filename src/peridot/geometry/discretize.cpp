@@ -6,6 +6,10 @@
 #include <numeric>
 #include <sstream>
 
+#include <unistd.h>
+
+#include <fmt/format.h>
+
 namespace peridot {
 
 double uniform01(std::uint64_t& state) {
@@ -71,6 +75,57 @@ void fill_shape(const Problem& problem, std::int32_t block, std::vector<RawPoint
       }
 }
 
+// The least a point and a directed bond take (coordinates, volume, displacement, velocity, force; a bond's
+// partner index and state): the estimate below is a floor, so a refused deck would not have fitted.
+constexpr double point_bytes = 100, bond_bytes = 5;
+// Looping over more lattice sites than this takes hours, whatever the shape keeps of them.
+constexpr double max_lattice_sites = 1e12;
+
+/// Refuses, before any point is made, bodies whose lattice would not fit in memory: a body's points are its
+/// bounding box's lattice sites times the fraction of 16^dim sample sites that the shape contains, its
+/// bonds that many times a full family's count (δ/Δx)^dim times the unit ball's measure.
+void check_size(const Problem& problem) {
+  const int dim = problem.dimension;
+  const double dx = problem.spacing;
+  const double limit = problem.memory_limit > 0 ? problem.memory_limit
+                                                : static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  double points = 0, bonds = 0, largest = -1;
+  const BodySpec* culprit = nullptr;
+  for (const BodySpec& body : problem.bodies) {
+    if (!body.shape) continue;  // a point file is as large as it is
+    const BoundingBox box = body.shape->bounds(dim);
+    double sites = 1;
+    for (int d = 0; d < dim; ++d) sites *= std::max(1.0, (box.hi[d] - box.lo[d]) / dx + 1);
+    if (!(sites <= max_lattice_sites))
+      throw InputError(body.pos, fmt::format("bodies.{}: its bounding box holds {:.3g} lattice sites of spacing {:g} m "
+                                             "(at most {:g} can be searched); a larger spacing or a smaller body",
+                                             body.name, sites, dx, max_lattice_sites));
+    constexpr int samples = 16;
+    int inside = 0, total = 0;
+    for (int k = 0; k < (dim == 3 ? samples : 1); ++k)
+      for (int j = 0; j < (dim >= 2 ? samples : 1); ++j)
+        for (int i = 0; i < samples; ++i, ++total) {
+          const int index[3] = {i, j, k};
+          Vec3 p;
+          for (int d = 0; d < dim; ++d) p[d] = box.lo[d] + (index[d] + 0.5) / samples * (box.hi[d] - box.lo[d]);
+          inside += body.shape->contains(p, dim) ? 1 : 0;
+        }
+    const double body_points = sites * inside / total;
+    const double m = body.horizon / dx;
+    const double family = dim == 3 ? 4.18879 * m * m * m : dim == 2 ? 3.14159 * m * m : 2 * m;
+    points += body_points;
+    bonds += body_points * family;
+    if (body_points > largest) largest = body_points, culprit = &body;
+  }
+  const double bytes = points * point_bytes + bonds * bond_bytes;
+  if (culprit && bytes > limit)
+    throw InputError(culprit->pos,
+                     fmt::format("bodies.{}: with spacing {:g} m the bodies hold about {:.3g} points and {:.3g} bonds, "
+                                 "at least {:.3g} GiB, more than the {:.3g} GiB {}; a larger spacing or smaller bodies",
+                                 culprit->name, dx, points, bonds, bytes / 0x1p30, limit / 0x1p30,
+                                 problem.memory_limit > 0 ? "allowed by --max-memory" : "of this machine's memory"));
+}
+
 void read_point_file(const Problem& problem, const BodySpec& body, std::int32_t block, std::vector<RawPoint>& out) {
   std::ifstream in(body.points_file);
   if (!in) throw InputError(body.pos, "bodies." + body.name + ": cannot open points_file '" + body.points_file + "'");
@@ -115,6 +170,7 @@ Discretization discretize(const Problem& problem) {
   std::vector<RawPoint> raw;
   std::uint64_t rng = problem.seed;
   std::vector<Diagnostic> errors;
+  check_size(problem);
   for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
     const BodySpec& body = problem.bodies[b];
     const std::size_t before = raw.size();

@@ -37,6 +37,13 @@ Loads::Loads(const Problem& problem, const Discretization& disc, const std::vect
             {&points_of(sets, traction.node_set, all_points_), d, ScalarFunction(*traction.component[d]), 1 / traction.depth});
         body_force_time_dependent_ = body_force_time_dependent_ || body_forces_.back().value.depends_on_time();
       }
+  // A load that starts as inf or NaN (1/x at x = 0) is a deck error, reported before anything runs.
+  auto check_start = [&](const ScalarFunction& f, const std::vector<std::uint32_t>& points) {
+    for (std::uint32_t i : points) f.at_start(disc.x(i, 0), disc.x(i, 1), disc.x(i, 2));
+  };
+  for (const auto* fields : {&initial_displacement_, &initial_velocity_, &body_forces_})
+    for (const Field& field : *fields) check_start(field.value, *field.points);
+  for (const Prescribed& c : conditions_) check_start(c.value, *c.points);
 }
 
 void Loads::apply_initial_conditions(State& state) const {

@@ -5,7 +5,9 @@
 namespace peridot {
 
 TemperatureField::TemperatureField(const TemperatureSpec& spec, const Discretization& disc)
-    : disc_(disc), value_(spec.value), reference_(spec.reference) {}
+    : disc_(disc), value_(spec.value), reference_(spec.reference) {
+  for (std::size_t i = 0; i < disc.num_points(); ++i) value_.at_start(disc.x(i, 0), disc.x(i, 1), disc.x(i, 2));
+}
 
 bool TemperatureField::evaluate(double t, std::vector<double>& temperature) {
   if (evaluated_ && !value_.depends_on_time()) return false;

@@ -90,11 +90,12 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   try {
     check_symmetry_walls(problem_, comm_.serial() ? disc_ : global_disc_, model_.params);
     correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_, &halo_, comm_);
+    bodies_ = std::make_unique<RigidBodies>(problem_, model_);
+    if (problem_.temperature) temperature_ = std::make_unique<TemperatureField>(*problem_.temperature, disc_);
   } catch (const InputError& e) {
-    refused = e;  // found from this rank's bonds only: every rank must hear of it
+    refused = e;  // found from this rank's bonds or points only: every rank must hear of it
   }
   agree_on_input_error(refused);
-  bodies_ = std::make_unique<RigidBodies>(problem_, model_);
   if (problem_.contact) {
     const Discretization& all = comm_.serial() ? disc_ : global_disc_;
     short_range_ = std::make_unique<ShortRangeContact>(*problem_.contact, problem_, all, model_.params, model_.any_damage());
@@ -108,7 +109,6 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
         for (std::uint32_t c = 0; c < counts[r]; ++c) owner_[everyone[k++]] = static_cast<int>(r);
     }
   }
-  if (problem_.temperature) temperature_ = std::make_unique<TemperatureField>(*problem_.temperature, disc_);
 
   any_dilatation_ = model_.any_dilatation();
   any_start_step_ = model_.any_start_step();
@@ -140,7 +140,12 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     peridot::start_step(model_, state_.history, 0.0);
     exchange_partner_bonds();
   }
-  loads_ = std::make_unique<Loads>(problem_, disc_, node_sets_);
+  try {
+    loads_ = std::make_unique<Loads>(problem_, disc_, node_sets_);
+  } catch (const InputError& e) {
+    refused = e;  // a load that is not finite at this rank's points
+  }
+  agree_on_input_error(refused);
 
   work_.assign(disc_.num_points(), 0.0);
   stable_dt_ = comm_.min(peridot::stable_time_step(model_));

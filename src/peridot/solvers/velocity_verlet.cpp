@@ -43,6 +43,12 @@ TimeIntegrator::Schedule VelocityVerlet::schedule(const SolverSpec& solver, doub
   if (q.has("end_time")) {
     // Whole steps that end exactly at end_time, none longer than the chosen Δt.
     const double end_time = q.number("end_time");
+    // Beyond 2^53 steps the count is not an exact integer (and beyond 2^63 not even representable).
+    if (const double steps = std::ceil(end_time / s.time_step); !(steps <= 0x1p53))
+      throw InputError(q.find("end_time")->pos,
+                       fmt::format("solver.end_time: {:g} s takes {:g} steps of {:g} s, more than a run can count; "
+                                   "shorten the end time or give a larger time_step",
+                                   end_time, steps, s.time_step));
     s.steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(end_time / s.time_step * (1 - 1e-12))));
     s.time_step = end_time / static_cast<double>(s.steps);
   } else {
