@@ -9,8 +9,8 @@ the angle between that line, oriented away from the tip, and the notch direction
 The experiment (Kalthoff & Winkler 1988) shows about 70 degrees, the cracks running away
 from the impacted strip between the notches.
 
-Run from this folder after the simulation:  /usr/bin/python3 measure_crack_angle.py [out/kalthoff.e]
-Writes crack_angle.png (damage map, notches, selected crack points, fitted lines and angles).
+Run from this folder after the simulation:  /usr/bin/python3 measure_crack_angle.py [out/kalthoff.e [PNG]]
+Writes crack_angle.png, or PNG (damage map, notches, selected crack points, fitted lines and angles).
 Pre-crack bonds are removed before the run and do not count as damage, so the notches
 themselves carry no damage; the band beside them is still excluded in case they do.
 """
@@ -64,7 +64,7 @@ def fit_crack(xy, dmg, tip):
     return angle, direction, sel
 
 
-def main(path):
+def main(path, out):
     with pr.Results(path) as res:
         coords = res.coords
         damage = res.field("damage")
@@ -109,10 +109,10 @@ def main(path):
     if results:
         mean = np.mean(list(results.values()))
         print(f"mean crack angle {mean:.1f} deg (experiment: about 70 deg)")
-    out = HERE / "crack_angle.png"
     fig.savefig(out, dpi=110, bbox_inches="tight")
     print(f"wrote {out}")
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else str(HERE / "out" / "kalthoff.e"))
+    main(sys.argv[1] if len(sys.argv) > 1 else str(HERE / "out" / "kalthoff.e"),
+         pathlib.Path(sys.argv[2]) if len(sys.argv) > 2 else HERE / "crack_angle.png")
