@@ -1,5 +1,6 @@
 // peridot: the command-line program.
-//   peridot run deck.yaml      run a deck (exit 2: bad deck, nothing written; exit 3: numerical failure)
+//   peridot run deck.yaml      run a deck (exit 2: bad deck, nothing written; exit 3: numerical failure;
+//                              128 + N: stopped by signal N (SIGINT, SIGTERM, SIGUSR1) after a step)
 //   peridot check deck.yaml    validate a deck and print what the run would be, without running it
 //   peridot info [--markdown]  every model, key, unit and default, from the schema the parser uses
 //   peridot info --model NAME [--markdown]  the documentation page of a material model
@@ -98,8 +99,9 @@ int main(int argc, char** argv) {
     peridot::RunOptions options;
     options.progress = !quiet;
     options.log = quiet || !root ? nullptr : &std::cout;
-    peridot::run_problem(problem, options);
-    return 0;
+    // Stopped by a signal after a step: the shell's convention, 128 + the signal's number.
+    const peridot::RunOutcome outcome = peridot::run_problem(problem, options);
+    return outcome.signal == 0 ? 0 : 128 + outcome.signal;
   } catch (const peridot::InputError& e) {
     return report(e);
   } catch (const peridot::NumericalError& e) {

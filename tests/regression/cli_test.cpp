@@ -12,6 +12,11 @@
 #include <sstream>
 #include <string>
 
+#include <chrono>
+#include <csignal>
+#include <thread>
+
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -140,6 +145,66 @@ TEST(Cli, DeckReferenceIsUpToDate) {
   ASSERT_EQ(result.status, 0);
   EXPECT_EQ(result.output, read_file(source / "docs" / "deck.md"))
       << "regenerate with: peridot info --markdown > docs/deck.md";
+}
+
+// A finished run's results replace the previous ones; an output name that is a symlink is replaced, not
+// followed out of the folder.
+TEST(Cli, ResultsReplaceSymlinksInsteadOfFollowingThem) {
+  const fs::path dir = scratch("symlink");
+  const std::string deck = (source / "tests" / "regression" / "decks" / "exodus_small.yaml").string();
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "victim.csv") << "keep";
+  fs::create_symlink(dir / "victim.csv", dir / "out" / "history.csv");
+  ASSERT_EQ(run("run -q -o " + (dir / "out").string() + " " + deck).status, 0);
+  EXPECT_EQ(read_file(dir / "victim.csv"), "keep");
+  EXPECT_FALSE(fs::is_symlink(dir / "out" / "history.csv"));
+  EXPECT_NE(read_file(dir / "out" / "history.csv").find("time,step"), std::string::npos);
+  for (const char* partial : {"small.e.partial", "history.csv.partial", "resolved_deck.yaml.partial"})
+    EXPECT_FALSE(fs::exists(dir / "out" / partial)) << partial;
+}
+
+// SIGTERM (as a batch system sends) stops a run after the step in progress, with that step's frame and history
+// row written: exit 128 + 15, the results in *.partial files, and the earlier finished run's results untouched.
+TEST(Cli, SignalStopsAfterAStepAndKeepsTheFinishedResults) {
+  const fs::path dir = scratch("signal");
+  const fs::path out = dir / "out";
+  const fs::path small = source / "tests" / "regression" / "decks" / "exodus_small.yaml";
+  ASSERT_EQ(run("run -q -o " + out.string() + " " + small.string()).status, 0);
+  const std::string finished = read_file(out / "small.e"), finished_history = read_file(out / "history.csv");
+  ASSERT_FALSE(finished.empty());
+
+  const fs::path deck = dir / "long.yaml";
+  std::ofstream(deck) << std::regex_replace(read_file(small), std::regex("num_steps: 120"), "num_steps: 100000000");
+  const fs::path messages = dir / "stderr.txt";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int fd = ::open(messages.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 2);
+    ::execl(PERIDOT_EXECUTABLE, "peridot", "run", "-q", "-t", "1", "-o", out.c_str(), deck.c_str(), nullptr);
+    ::_exit(127);
+  }
+  // Stop it once it has written some rows.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline &&
+         (!fs::exists(out / "history.csv.partial") || fs::file_size(out / "history.csv.partial") < 20000))
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed instead of stopping";
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  const std::string said = read_file(messages);
+  std::smatch step;
+  ASSERT_TRUE(std::regex_search(said, step, std::regex(R"(stopped by SIGTERM after step (\d+) of 100000000)"))) << said;
+  // The last history row is the step it stopped after; the finished run's results are byte for byte as they were.
+  const std::string history = read_file(out / "history.csv.partial");
+  const std::string last_row = history.substr(history.rfind('\n', history.size() - 2) + 1);
+  EXPECT_EQ(last_row.substr(last_row.find(',') + 1, step[1].length() + 1), step[1].str() + ",") << last_row;
+  EXPECT_TRUE(fs::file_size(out / "small.e.partial") > 0);
+  EXPECT_TRUE(read_file(out / "small.e") == finished);
+  EXPECT_EQ(read_file(out / "history.csv"), finished_history);
+  EXPECT_NE(read_file(out / "run.log").find("stopped by SIGTERM"), std::string::npos);
 }
 
 // A time step far above the stable one blows up: exit 3, a message naming step, time, point and position,

@@ -713,6 +713,20 @@ struct Parser {
     read_parameters(r, solver->keys, {}, p.solver.parameters);
   }
 
+  /// An output file is a plain name inside output.directory: no directory part (a path could leave the
+  /// folder or land on another output), not a name the run writes itself, not the other output's name.
+  void check_output_name(const Value& v, const std::string& path, const std::string& other) {
+    const std::string& name = v.text;
+    if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
+      ctx.error(v.pos, path, fmt::format("'{}' is not a file name; give a name without a directory part: the file is "
+                                         "written inside output.directory", name));
+    else if (name == "run.log" || name == "resolved_deck.yaml" || name.ends_with(".partial"))
+      ctx.error(v.pos, path, fmt::format("'{}' is a name the run writes itself (run.log, resolved_deck.yaml and "
+                                         "*.partial are taken); choose another", name));
+    else if (name == other)
+      ctx.error(v.pos, path, fmt::format("'{}' is also the Exodus file's name; the two outputs need different names", name));
+  }
+
   void parse_output(const Value& v) {
     MapReader r(ctx, v.node, v.key_pos, "output", deck_section("output").keys);
     OutputSpec& o = p.output;
@@ -723,11 +737,13 @@ struct Parser {
       MapReader e(ctx, r["exodus"].node, r["exodus"].key_pos, r.path_of("exodus"), deck_section("output.exodus").keys);
       o.exodus_every = e["every"].integer;
       o.exodus_file = e["file"].text;
+      check_output_name(e["file"], e.path_of("file"), "");
     }
     if (r.given("history")) {
       MapReader h(ctx, r["history"].node, r["history"].key_pos, r.path_of("history"), deck_section("output.history").keys);
       o.history_every = h["every"].integer;
       o.history_file = h["file"].text;
+      check_output_name(h["file"], h.path_of("file"), o.exodus_every > 0 ? o.exodus_file : "");
       o.reaction_sets = h["reaction"].names;
       check_node_sets(h["reaction"], h.path_of("reaction"), o.reaction_sets);
       for_each_item(h["probes"], h.path_of("probes"), [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {

@@ -1,6 +1,8 @@
 #include "peridot/solvers/runner.hpp"
 
+#include <array>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +11,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "peridot/deck/deck.hpp"
 #include "peridot/materials/models.hpp"
@@ -94,6 +97,61 @@ std::string describe_setup(const Simulation& sim) {
 
 namespace {
 
+/// The signal that asked the run to stop; 0 while none has.
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void request_stop(int signal) {
+  stop_signal = signal;
+  std::signal(signal, SIG_DFL);  // a second one ends the process at once (async-signal-safe)
+}
+
+/// SIGINT, SIGTERM and SIGUSR1 (a batch system's notice before its limit) ask the step loop to stop, for the
+/// lifetime of this object; the earlier handlers come back after it.
+class StopSignals {
+ public:
+  StopSignals() {
+    stop_signal = 0;
+    for (std::size_t k = 0; k < signals_.size(); ++k) previous_[k] = std::signal(signals_[k], request_stop);
+  }
+  ~StopSignals() {
+    for (std::size_t k = 0; k < signals_.size(); ++k) std::signal(signals_[k], previous_[k]);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  int received() const { return stop_signal; }
+
+ private:
+  static constexpr std::array<int, 3> signals_ = {SIGINT, SIGTERM, SIGUSR1};
+  std::array<void (*)(int), 3> previous_{};
+};
+
+/// The results are written under NAME.partial and moved into place together at the end, so that a rerun
+/// stopped early never leaves fewer frames where a finished run had more. A symlink of either name is
+/// replaced, never followed out of the folder.
+class ResultFiles {
+ public:
+  explicit ResultFiles(fs::path dir) : dir_(std::move(dir)) {}
+  /// The path to write `name` to; a stale partial file of that name is removed first.
+  fs::path partial(const std::string& name) {
+    names_.push_back(name);
+    const fs::path path = dir_ / (name + ".partial");
+    fs::remove(path);
+    return path;
+  }
+  void publish() const {
+    for (const std::string& name : names_) fs::rename(dir_ / (name + ".partial"), dir_ / name);
+  }
+  std::string partial_names() const {
+    std::vector<std::string> names;
+    for (const std::string& name : names_) names.push_back(name + ".partial");
+    return fmt::format("{}", fmt::join(names, ", "));
+  }
+
+ private:
+  fs::path dir_;
+  std::vector<std::string> names_;
+};
+
 /// Writes text to path through a temporary file and a rename, so the file is either absent or whole.
 void write_file_atomically(const fs::path& path, const std::string& text) {
   fs::path tmp = path;
@@ -160,6 +218,7 @@ class History {
     }
     writer_ = std::make_unique<CsvWriter>(path.string(), columns);
   }
+  void close() { writer_->close(); }
   /// One row from the gathered outputs (Simulation::gather_outputs with totals; rank 0).
   void write() {
     const Totals t = sim_.output_totals();
@@ -235,7 +294,7 @@ class Progress {
 
 }  // namespace
 
-void run_problem(const Problem& problem, const RunOptions& options) {
+RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
   Simulation sim(problem);  // every input error surfaces here, before anything is written
   const Communicator& comm = sim.communicator();
   const bool root = comm.is_root();  // distributed, rank 0 writes every output
@@ -256,9 +315,10 @@ void run_problem(const Problem& problem, const RunOptions& options) {
 
   const OutputSpec& output = problem.output;
   const fs::path dir = output.directory;
+  ResultFiles results(dir);
   on_root([&] {
     fs::create_directories(dir);
-    write_file_atomically(dir / "resolved_deck.yaml", resolved_deck_yaml(problem));
+    write_file_atomically(results.partial("resolved_deck.yaml"), resolved_deck_yaml(problem));
   });
   RunLog log(dir / "run.log", options.log, root);
   log.line("peridot run " + problem.deck_path);
@@ -278,12 +338,20 @@ void run_problem(const Problem& problem, const RunOptions& options) {
     if (output.exodus_every > 0) {
       std::vector<NodeSetOutput> sets;
       for (const NodeSet& set : sim.output_node_sets()) sets.push_back({set.name, set.points});
-      exodus = std::make_unique<ExodusWriter>((dir / output.exodus_file).string(), sim.output_discretization(), sets,
+      exodus = std::make_unique<ExodusWriter>(results.partial(output.exodus_file).string(), sim.output_discretization(), sets,
                                               "peridot: " + problem.deck_path, problem.cross_section(),
                                               optional_exodus_fields(sim));
     }
-    if (output.history_every > 0) history = std::make_unique<History>(dir / output.history_file, sim);
+    if (output.history_every > 0) history = std::make_unique<History>(results.partial(output.history_file), sim);
   });
+  // Closed before they are moved into place; a failure to close is a failure to write.
+  auto close_results = [&](bool publish) {
+    on_root([&] {
+      if (exodus) exodus->close();
+      if (history) history->close();
+      if (publish) results.publish();
+    });
+  };
 
   auto write_outputs = [&](bool last) {
     const std::int64_t step = sim.state().step;
@@ -298,24 +366,43 @@ void run_problem(const Problem& problem, const RunOptions& options) {
   };
 
   Progress progress(options.progress && output.progress && root);
+  const StopSignals stop;
+  RunOutcome outcome;
   try {
     sim.initialize();
     write_outputs(sim.total_steps() == 0);
     while (sim.state().step < sim.total_steps()) {
       sim.step();
-      write_outputs(sim.state().step == sim.total_steps());
+      // Every rank stops after the same step, whichever received the signal.
+      outcome.signal = comm.serial() ? stop.received() : static_cast<int>(comm.max(stop.received()));
+      write_outputs(sim.state().step == sim.total_steps() || outcome.signal != 0);
       progress.update(sim);
+      if (outcome.signal != 0) break;
     }
   } catch (const NumericalError& e) {
     log.line(std::string("error: ") + e.what());
-    throw;  // writers close as they go out of scope; every frame written so far stays readable
+    close_results(true);  // every frame written so far stays readable, in place
+    throw;
   }
   progress.update(sim, true);
+  if (outcome.signal != 0) {
+    close_results(false);
+    const std::string name = outcome.signal == SIGINT ? "SIGINT" : outcome.signal == SIGTERM ? "SIGTERM" : "SIGUSR1";
+    const std::string saved = fmt::format(
+        "stopped by {} after step {} of {}, t = {:.6g} s: results up to this step are in {} (in {}); the "
+        "previous run's results there are untouched",
+        name, sim.state().step, sim.total_steps(), sim.state().time, results.partial_names(), dir.string());
+    log.line(saved);
+    if (!options.log && root) std::cerr << saved << '\n';
+    return outcome;
+  }
+  close_results(true);
   log.line(fmt::format("done: {} steps to t = {:.6g} s in {:.2f} s", sim.state().step, sim.state().time,
                        progress.elapsed()));
   if (const ShortRangeContact* contact = sim.short_range())
     log.line(fmt::format("contact: {} pair-list builds in {:.2f} s, pair forces {:.2f} s; {} pairs listed at the end (rank 0)",
                          contact->builds(), contact->build_seconds(), contact->compute_seconds(), contact->pairs()));
+  return outcome;
 }
 
 }  // namespace peridot

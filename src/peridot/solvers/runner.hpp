@@ -15,9 +15,18 @@ struct RunOptions {
   std::ostream* log = nullptr; ///< extra copy of the log (stdout by the CLI)
 };
 
+/// How a run that returned ended.
+struct RunOutcome {
+  int signal = 0;  ///< 0: it ran to its end; else the signal (SIGINT, SIGTERM, SIGUSR1) that stopped it after a step
+};
+
 /// Runs the problem. Throws InputError (before writing anything) or NumericalError (after closing every
-/// output written so far).
-void run_problem(const Problem& problem, const RunOptions& options);
+/// output written so far). The results (Exodus file, history, resolved deck) are written as NAME.partial and
+/// moved into place, replacing those of an earlier run, when the run ends: completed or failed numerically.
+/// SIGINT, SIGTERM and SIGUSR1 stop it after the current step with that step's frame and row written; its
+/// results then stay NAME.partial beside the earlier run's, which are untouched (so does a killed run's). A
+/// second signal ends the process at once.
+RunOutcome run_problem(const Problem& problem, const RunOptions& options);
 
 /// The summary `peridot check` prints: points, bonds, memory, time steps.
 std::string describe_setup(const Simulation& simulation);
