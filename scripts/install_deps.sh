@@ -10,6 +10,7 @@ packages=(
   libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev
   googletest libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev
   python3-numpy python3-matplotlib python3-netcdf4
+  clang libclang-rt-14-dev libomp-14-dev
 )
 
 missing=()

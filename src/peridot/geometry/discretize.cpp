@@ -78,8 +78,9 @@ void fill_shape(const Problem& problem, std::int32_t block, std::vector<RawPoint
 // The least a point and a directed bond take (coordinates, volume, displacement, velocity, force; a bond's
 // partner index and state): the estimate below is a floor, so a refused deck would not have fitted.
 constexpr double point_bytes = 100, bond_bytes = 5;
-// Looping over more lattice sites than this takes hours, whatever the shape keeps of them.
-constexpr double max_lattice_sites = 1e12;
+// A body's bounding box is searched site by site: at most this many times the points that fit in memory (and
+// at least 1e8 sites, a second or so), so that a thin shape in a huge box cannot keep the set-up busy for hours.
+constexpr double sites_per_point = 100, min_lattice_sites = 1e8;
 
 /// Refuses, before any point is made, bodies whose lattice would not fit in memory: a body's points are its
 /// bounding box's lattice sites times the fraction of 16^dim sample sites that the shape contains, its
@@ -89,6 +90,7 @@ void check_size(const Problem& problem) {
   const double dx = problem.spacing;
   const double limit = problem.memory_limit > 0 ? problem.memory_limit
                                                 : static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double max_lattice_sites = std::max(min_lattice_sites, sites_per_point * limit / point_bytes);
   double points = 0, bonds = 0, largest = -1;
   const BodySpec* culprit = nullptr;
   for (const BodySpec& body : problem.bodies) {
@@ -98,7 +100,8 @@ void check_size(const Problem& problem) {
     for (int d = 0; d < dim; ++d) sites *= std::max(1.0, (box.hi[d] - box.lo[d]) / dx + 1);
     if (!(sites <= max_lattice_sites))
       throw InputError(body.pos, fmt::format("bodies.{}: its bounding box holds {:.3g} lattice sites of spacing {:g} m "
-                                             "(at most {:g} can be searched); a larger spacing or a smaller body",
+                                             "(at most {:.3g} are searched, 100 per point that fits in memory); a "
+                                             "larger spacing or a smaller body",
                                              body.name, sites, dx, max_lattice_sites));
     constexpr int samples = 16;
     int inside = 0, total = 0;

@@ -1,7 +1,10 @@
 #include "peridot/output/exodus_writer.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -9,6 +12,9 @@
 
 #include <exodusII.h>
 #include <netcdf.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
 
 #include "peridot/core/error.hpp"
 
@@ -163,7 +169,11 @@ ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
   int comp_ws = sizeof(double);
   int io_ws = sizeof(double);
   ex_opts(EX_DEFAULT);  // no abort, no printing: every failure becomes an exception with the message
-  exoid_ = ex_create(path.c_str(), EX_CLOBBER | EX_LARGE_MODEL | EX_NOSHARE, &comp_ws, &io_ws);
+  // Created under another name and renamed once the header is complete, so that a process killed while
+  // creating it never leaves a file of this name that cannot be opened.
+  const std::string creating = path + ".creating";
+  ::unlink(creating.c_str());  // a stale one, or a symlink of that name: removed, not followed
+  exoid_ = ex_create(creating.c_str(), EX_CLOBBER | EX_LARGE_MODEL | EX_NOSHARE, &comp_ws, &io_ws);
   if (exoid_ < 0) {
     exoid_ = -1;
     throw_exodus(path_, "creating the file", -1);
@@ -263,8 +273,11 @@ ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
           "ex_put_variable_names");
     // The mesh alone, with zero time steps, is a valid file from here on.
     check(ex_update(exoid_), "ex_update");
+    if (::rename(creating.c_str(), path.c_str()) != 0)
+      throw std::runtime_error(fmt::format("{}: cannot rename {} to it: {}", path_, creating, std::strerror(errno)));
   } catch (...) {
     release();
+    ::unlink(creating.c_str());
     throw;
   }
 }

@@ -610,6 +610,10 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
       if (history && history->point.size() > static_cast<std::size_t>(released_array))
         released = history->point[released_array].data();
     const int chunk = points_per_chunk(range);
+    // Clang cannot reach compute_dilatation's locals from the lambda inside the parallel region below:
+    // this lambda's own names for them.
+    const double* const xs = x;
+    const BondFailure& fails = failure;
 #pragma omp parallel
     {
       RunScratch scratch;
@@ -637,11 +641,11 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
         auto general_bond = [&](std::uint64_t b) {
           if (broken[b]) return;
           const std::uint32_t j = neighbors[b];
-          const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
+          const BondGeometry<Dim> g = bond_geometry<Dim>(xs, up, i, j);
           const double term = influence(p.influence, g.xi, p.horizon) * bond_scale(ctx, p, b) * g.xi *
                               model.dilatation_extension(fields, b, mechanical_extension(ctx, i, g), g.xi) *
                               neighbor_volume(ctx, i, j, g.xi);
-          if (fail_bonds && failure.fails(i, j, bond_mechanical_extension(ctx, i, j, g.e, g.xi), g.xi,
+          if (fail_bonds && fails.fails(i, j, bond_mechanical_extension(ctx, i, j, g.e, g.xi), g.xi,
                                           pair_critical_stretch(ctx, p, blocks[i], j))) {
             broken[b] = 1;
             lost += term;
@@ -704,6 +708,12 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
     const double break_limit = fail_bonds ? p.critical_stretch : infinity;
     const bool scaled = p.surface_correction && fields.bond_scale;  // the AVX-512 loops have no bond factor
     const int chunk = points_per_chunk(range);
+    // Clang cannot reach compute_internal_force's locals from the lambda inside the parallel region below:
+    // this lambda's own names for them.
+    const double* const xs = x;
+    const BondFailure& fails = failure;
+    const bool histories = any_history;
+    const std::uint32_t* const partners = reverse;
 #pragma omp parallel
     {
       RunScratch scratch;
@@ -732,15 +742,15 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
         auto general_bond = [&](std::uint64_t b) {
           if (broken[b]) return;
           const std::uint32_t j = neighbors[b];
-          const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
-          if (fail_bonds && failure.fails(i, j, bond_mechanical_extension(ctx, i, j, g.e, g.xi), g.xi,
-                                          pair_critical_stretch(ctx, p, blocks[i], j))) {
+          const BondGeometry<Dim> g = bond_geometry<Dim>(xs, up, i, j);
+          if (fail_bonds && fails.fails(i, j, bond_mechanical_extension(ctx, i, j, g.e, g.xi), g.xi,
+                                        pair_critical_stretch(ctx, p, blocks[i], j))) {
             broken[b] = 1;
             if (!after_force) return;
           }
           const double scale = bond_scale(ctx, p, b);
           const double omega = influence(p.influence, g.xi, p.horizon) * scale;
-          const std::uint64_t partner_bond = any_history ? reverse[b] : 0;
+          const std::uint64_t partner_bond = histories ? partners[b] : 0;
           const double e_j = mechanical_extension(ctx, j, g);  // |ξ| and e are the same from j
           const double t_ji = blocks[j] == blocks[i]
                                   ? end_force_scalar<Model>(p, mp, fields, j, partner_bond, e_j, g.xi, omega)

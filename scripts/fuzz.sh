@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Builds the deck fuzzer (clang, AddressSanitizer, UndefinedBehaviorSanitizer, libFuzzer) in build-fuzz and runs
+# it for SECONDS (default 90) on a corpus seeded with every example and test deck. Fails (exit 1, the input in
+# build-fuzz/findings/) on any input that crashes, trips a sanitizer, leaks, throws anything but an input error,
+# or takes more than 10 s. Usage: scripts/fuzz.sh [SECONDS] [extra libFuzzer options, e.g. -runs=1000000]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-90}
+shift || true
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Fuzz -DPERIDOT_FUZZ=ON >/dev/null
+cmake --build build-fuzz --target deck_fuzzer
+corpus=build-fuzz/corpus
+mkdir -p "$corpus" build-fuzz/findings
+# The seeds, named after their paths (several folders have a deck.yaml).
+for deck in examples/*/deck*.yaml tests/data/decks/*.yaml tests/regression/decks/*.yaml; do
+  cp "$deck" "$corpus/seed_${deck//\//_}"
+done
+export OMP_NUM_THREADS=1
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ./build-fuzz/fuzz/deck_fuzzer "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=3072 \
+  -artifact_prefix=build-fuzz/findings/ -print_final_stats=1 "$@"
