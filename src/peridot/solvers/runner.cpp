@@ -176,6 +176,10 @@ class RunLog {
     file_ << text << '\n' << std::flush;
     if (echo_) *echo_ << text << '\n' << std::flush;
   }
+  /// A line for the log file alone (the command line prints it on stderr itself).
+  void file_line(const std::string& text) {
+    if (enabled_) file_ << text << '\n' << std::flush;
+  }
 
  private:
   bool enabled_;
@@ -299,7 +303,9 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
   const Communicator& comm = sim.communicator();
   const bool root = comm.is_root();  // distributed, rank 0 writes every output
 
-  // A failure to write on rank 0 stops every rank (the others would wait for it in the next collective).
+  // A failure to write on rank 0 stops every rank (the others would wait for it in the next collective), and
+  // goes into the run log as well as to stderr (the log may be the file that cannot be written).
+  RunLog* log_of_failures = nullptr;
   auto on_root = [&](auto&& write) {
     std::string failure;
     if (root) {
@@ -310,7 +316,10 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
       }
     }
     const int failing = comm.first_rank_with(!failure.empty());
-    if (failing >= 0) throw OutputError(comm.broadcast(failure, failing));
+    if (failing < 0) return;
+    const std::string message = comm.broadcast(failure, failing);
+    if (log_of_failures) log_of_failures->file_line("error: " + message);
+    throw OutputError(message);
   };
 
   const OutputSpec& output = problem.output;
@@ -321,6 +330,7 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
     write_file_atomically(results.partial("resolved_deck.yaml"), resolved_deck_yaml(problem));
   });
   RunLog log(dir / "run.log", options.log, root);
+  log_of_failures = &log;
   log.line("peridot run " + problem.deck_path);
   for (const Diagnostic& w : problem.warnings) log.line(w.str());
   std::istringstream setup(describe_setup(sim));
