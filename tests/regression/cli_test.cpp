@@ -207,8 +207,8 @@ TEST(Cli, SignalStopsAfterAStepAndKeepsTheFinishedResults) {
   EXPECT_NE(read_file(out / "run.log").find("stopped by SIGTERM"), std::string::npos);
 }
 
-// A time step far above the stable one blows up: exit 3, a message naming step, time, point and position,
-// and the frames written before the failure still readable (the history has its rows).
+// A time step far above the stable one blows up: exit 3, a message naming step, time, point, position and the
+// likely cause, and the frames written before the failure still readable (the history has its rows).
 TEST(Cli, BlowUpExitsThreeNamingStepTimeAndPoint) {
   const fs::path dir = scratch("blowup");
   const fs::path deck = dir / "deck.yaml";
@@ -221,7 +221,9 @@ TEST(Cli, BlowUpExitsThreeNamingStepTimeAndPoint) {
   EXPECT_TRUE(std::regex_search(result.output, std::regex(R"(at step \d+, time [0-9.e+-]+ s, point \d+ .* at \()")))
       << result.output;
   EXPECT_TRUE(fs::exists(dir / "out" / "small.e"));
-  EXPECT_NE(read_file(dir / "out" / "run.log").find("error: non-finite"), std::string::npos);
+  // Caught while still finite: 100 times the problem's size, long before inf.
+  EXPECT_NE(read_file(dir / "out" / "run.log").find("error: runaway displacement"), std::string::npos);
+  EXPECT_NE(result.output.find("more than 100 times the problem's size"), std::string::npos) << result.output;
 }
 
 /// Runs `deck` with 1 and 2 threads into scratch folders named after `name`; expects every byte of small.e

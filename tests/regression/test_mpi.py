@@ -125,9 +125,9 @@ def main():
     open(blowup, "w").write(text)
     out = os.path.join(a.work, "blowup")
     r = peridot(["run", "-q", "-o", out, blowup], ranks=2)
-    messages = re.findall(r"error: non-finite \w+ at step \d+, time [0-9.e+-]+ s, point \d+", r.stderr)
+    messages = re.findall(r"error: runaway \w+ at step \d+, time [0-9.e+-]+ s, point \d+", r.stderr)
     check(r.returncode == 3 and len(messages) == 1 and os.path.getsize(os.path.join(out, "small.e")) > 0
-          and "error: non-finite" in open(os.path.join(out, "run.log")).read(),
+          and "error: runaway" in open(os.path.join(out, "run.log")).read(),
           f"blow-up on 2 ranks: exit {r.returncode}, {len(messages)} message(s), frames and log kept")
 
     # A correspondence point whose deformation gradient inverts (a cube hit at 20 km/s) fails inside the

@@ -59,6 +59,17 @@ TimeIntegrator::Schedule VelocityVerlet::schedule(const SolverSpec& solver, doub
 
 VelocityVerlet::VelocityVerlet(Simulation& sim) : sim_(sim), damping_(sim.problem().solver.parameters.number("damping")) {
   sim.model().bond_failure_after_force = sim.problem().solver.parameters.text("bond_failure") == "after_force";
+  // Every rank holds the whole problem's points: the same extent, the same limit everywhere.
+  const Discretization& all = sim.output_discretization();
+  double extent = 0;
+  for (int d = 0; d < 3; ++d) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (std::size_t i = 0; i < all.num_points(); ++i) lo = std::min(lo, all.x(i, d)), hi = std::max(hi, all.x(i, d));
+    if (hi >= lo) extent = std::max(extent, hi - lo);
+  }
+  double horizon = 0;
+  for (const MaterialParams& p : sim.model().params) horizon = std::max(horizon, p.horizon);
+  runaway_ = 100 * (extent + horizon);
 }
 
 void VelocityVerlet::initialize() {
@@ -163,20 +174,27 @@ void VelocityVerlet::advance() {
   loads.apply_velocity_conditions(state.time, state.v);
   for (std::uint64_t k : prescribed) work[k / 3] += 0.5 * dof_mass(k) * state.v.data()[k] * state.v.data()[k];
 
-  // A non-finite velocity means the run has failed: name the first such point.
+  // A non-finite velocity or displacement means the run has failed, and so does a displacement of 100 times
+  // the problem's size (a blow-up on its way to inf): name the first such point.
   std::size_t bad = dofs;
+  const double runaway = runaway_;
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::size_t k = 0; k < dofs; ++k)
-    if (!std::isfinite(v[k]) || !std::isfinite(u[k])) bad = std::min(bad, k);
+    if (!std::isfinite(v[k]) || !(std::abs(u[k]) <= runaway)) bad = std::min(bad, k);
   if (bad < dofs && failure.empty()) {
     const std::size_t i = bad / 3;
     const Vec3 x = disc.x.get(i);
+    const bool finite = std::isfinite(u[bad]) && std::isfinite(v[bad]);
     std::ostringstream msg;
     msg.precision(6);
-    msg << "non-finite " << (std::isfinite(u[bad]) ? "velocity" : "displacement") << " at step " << state.step
-        << ", time " << state.time << " s, point " << disc.input_id[i] << " (block '" << disc.block_names[disc.block[i]]
-        << "') at (" << x.x << ", " << x.y << ", " << x.z << ") m; Δt = " << dt << " s, stable Δt = "
-        << sim_.stable_time_step() << " s";
+    msg << (finite ? "runaway" : "non-finite") << " " << (std::isfinite(u[bad]) && !finite ? "velocity" : "displacement")
+        << " at step " << state.step << ", time " << state.time << " s, point " << disc.input_id[i] << " (block '"
+        << disc.block_names[disc.block[i]] << "') at (" << x.x << ", " << x.y << ", " << x.z << ") m";
+    if (finite)
+      msg << ": |u| = " << std::abs(u[bad]) << " m, more than 100 times the problem's size (" << runaway / 100
+          << " m with a horizon); the solution has blown up (a time step above the stable one, or a density or modulus "
+             "out of range?)";
+    msg << "; Δt = " << dt << " s, stable Δt = " << sim_.stable_time_step() << " s";
     failure = msg.str();
   }
   sim_.agree_on_failure(failure);

@@ -32,6 +32,8 @@ class VelocityVerlet final : public TimeIntegrator {
   void kick(double half_dt);
   Simulation& sim_;
   double damping_;  ///< c (1/s) of solver.damping
+  /// A displacement beyond this (100 times the problem's extent) is a blow-up still finite: the run stops.
+  double runaway_ = 0;
 };
 
 }  // namespace peridot
