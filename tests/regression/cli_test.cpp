@@ -226,6 +226,22 @@ TEST(Cli, BlowUpExitsThreeNamingStepTimeAndPoint) {
   EXPECT_NE(result.output.find("more than 100 times the problem's size"), std::string::npos) << result.output;
 }
 
+// A history total that overflows while every point's values are finite (a density of 1e300 at 1e9 m/s: the
+// kinetic energy is inf) stops the run like a non-finite point value: exit 3, the column named, the row kept.
+TEST(Cli, NonFiniteHistoryTotalExitsThree) {
+  const fs::path dir = scratch("overflow");
+  const fs::path deck = dir / "deck.yaml";
+  std::string text = read_file(source / "tests" / "regression" / "decks" / "exodus_small.yaml");
+  text = std::regex_replace(text, std::regex("density: [0-9.e+]+"), "density: 1e300");
+  text = std::regex_replace(text, std::regex(R"(velocity: \{y: "20 \* \(y - 0.01\) / 0.01"\})"), R"(velocity: {y: "1e9"})");
+  std::ofstream(deck) << text;
+  const Result result = run("run -q " + deck.string());
+  EXPECT_EQ(result.status, 3) << result.output;
+  EXPECT_NE(result.output.find("non-finite kinetic_energy in the history at step 0"), std::string::npos) << result.output;
+  const std::string history = read_file(dir / "out" / "history.csv");
+  EXPECT_NE(history.find(",inf,"), std::string::npos) << history;
+}
+
 /// Runs `deck` with 1 and 2 threads into scratch folders named after `name`; expects every byte of small.e
 /// and history.csv identical, and returns the 1-thread folder.
 fs::path expect_identical_with_one_and_two_threads(const std::string& deck_name, const std::string& name) {

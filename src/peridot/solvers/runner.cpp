@@ -221,10 +221,12 @@ class History {
       columns.push_back(probe.name);
     }
     writer_ = std::make_unique<CsvWriter>(path.string(), columns);
+    columns_ = std::move(columns);
   }
   void close() { writer_->close(); }
-  /// One row from the gathered outputs (Simulation::gather_outputs with totals; rank 0).
-  void write() {
+  /// One row from the gathered outputs (Simulation::gather_outputs with totals; rank 0). Returns the name of
+  /// its first non-finite column ("" when every value is finite); the row is written either way.
+  std::string write() {
     const Totals t = sim_.output_totals();
     const State& s = sim_.output_state();
     std::vector<double> row = {s.time, static_cast<double>(s.step), t.kinetic_energy, t.strain_energy,
@@ -250,6 +252,9 @@ class History {
     }
     for (const auto& [point, field] : probes_) row.push_back(point_field(s, field, point));
     writer_->write_row(row);
+    for (std::size_t k = 0; k < row.size(); ++k)
+      if (!std::isfinite(row[k])) return columns_[k];
+    return {};
   }
 
  private:
@@ -269,6 +274,7 @@ class History {
   std::vector<const NodeSet*> reaction_sets_;
   std::vector<std::pair<std::size_t, std::string>> probes_;
   std::unique_ptr<CsvWriter> writer_;
+  std::vector<std::string> columns_;
 };
 
 class Progress {
@@ -369,10 +375,16 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
     const bool row = output.history_every > 0 && (step % output.history_every == 0 || last);
     if (!frame && !row) return;
     sim.gather_outputs(frame, row);
+    std::string non_finite;  // a total that overflowed while every point's values stayed finite
     on_root([&] {
       if (frame) exodus->write_frame(sim.state().time, sim.output_state());
-      if (row) history->write();
+      if (row) non_finite = history->write();
     });
+    if (!row) return;
+    const int failing = comm.first_rank_with(!non_finite.empty());
+    if (failing >= 0)
+      throw NumericalError(fmt::format("non-finite {} in the history at step {}, time {:.6g} s (written as the last row)",
+                                       comm.broadcast(non_finite, failing), sim.state().step, sim.state().time));
   };
 
   Progress progress(options.progress && output.progress && root);
