@@ -185,6 +185,26 @@ TEST(Neighborhood, SimpleCubicFamilyHas122BondsAndListsAreSymmetricAndSorted) {
   for (auto [i, j] : pairs) EXPECT_TRUE(pairs.count({j, i})) << i << " → " << j << " has no reverse";
 }
 
+// Two bodies a kilometre apart: the cell grid keeps only the occupied cells (a dense one over the bounding box
+// would need 1e17 cells; it threw bad_alloc), and each body has the bonds it has alone.
+TEST(Neighborhood, BodiesFarApartKeepTheirOwnFamilies) {
+  testing::BlockSetup setup;
+  setup.cells[0] = setup.cells[1] = setup.cells[2] = 7;
+  const Problem alone = testing::box_problem(setup);
+  Problem apart = alone;
+  apart.bodies.push_back(apart.bodies[0]);
+  apart.bodies[1].name = "far";
+  apart.bodies[1].shape->lo = apart.bodies[1].shape->lo + Vec3{1000, 1000, 1000};
+  apart.bodies[1].shape->hi = apart.bodies[1].shape->hi + Vec3{1000, 1000, 1000};
+  const Discretization one = discretize(alone), two = discretize(apart);
+  const BondList single = build_neighborhood(one, options_for(alone));
+  const BondList both = build_neighborhood(two, options_for(apart));
+  ASSERT_EQ(two.num_points(), 2 * one.num_points());
+  EXPECT_EQ(both.num_bonds(), 2 * single.num_bonds());
+  for (std::size_t i = 0; i < two.num_points(); ++i)
+    for (auto b = both.offsets[i]; b < both.offsets[i + 1]; ++b) EXPECT_EQ(two.block[both.neighbors[b]], two.block[i]);
+}
+
 // δ a whole number of spacings (δ = 3Δx, as Madenci & Oterkus use): the bonds of length exactly δ are in every
 // family, whatever the round-off of the coordinates (before the search widened its cutoff by 1e-10, a 2D plate at
 // δ = 2Δx had families of 10 to 12 bonds in stripes, and a uniform strain relaxed to a striped strain field).

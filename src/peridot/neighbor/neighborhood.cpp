@@ -3,8 +3,11 @@
 #include "peridot/core/error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
+#include <utility>
 
 namespace peridot {
 
@@ -32,17 +35,34 @@ bool crosses_rectangle(Vec3 p, Vec3 q, const PrecrackSpec& c) {
   return s >= 0 && s <= 1 && t >= 0 && t <= 1;
 }
 
+/// Points binned in cubic cells. Dense (a CSR over every cell of the bounding box) unless the box holds far
+/// more cells than points (bodies far apart): then only the occupied cells, sorted, found by binary search.
 struct CellGrid {
+  using Cell = std::array<long, 3>;  // (k, j, i): sorted like the dense index
   Vec3 lo;
   double size = 1;
   long n[3] = {1, 1, 1};
-  std::vector<std::uint64_t> start;   // CSR over cells
+  bool dense = true;
+  std::vector<std::uint64_t> start;   // CSR over cells (dense) or over `occupied` (sparse)
+  std::vector<Cell> occupied;         // sparse only
   std::vector<std::uint32_t> points;  // point indices, by cell, increasing within a cell
 
   long coord(double x, int d) const {
-    return std::clamp(static_cast<long>((x - lo[d]) / size), 0L, n[d] - 1);
+    return std::clamp(static_cast<long>(std::min((x - lo[d]) / size, 0x1p50)), 0L, n[d] - 1);
   }
   long index(long i, long j, long k) const { return (k * n[1] + j) * n[0] + i; }
+  /// [begin, end) in `points` of cell (i, j, k).
+  std::pair<std::uint64_t, std::uint64_t> range(long i, long j, long k) const {
+    if (dense) {
+      const long cell = index(i, j, k);
+      return {start[cell], start[cell + 1]};
+    }
+    const Cell key{k, j, i};
+    const auto it = std::lower_bound(occupied.begin(), occupied.end(), key);
+    if (it == occupied.end() || *it != key) return {0, 0};
+    const std::size_t c = static_cast<std::size_t>(it - occupied.begin());
+    return {start[c], start[c + 1]};
+  }
 };
 
 CellGrid bin_points(const Discretization& disc, double cell_size) {
@@ -56,7 +76,28 @@ CellGrid bin_points(const Discretization& disc, double cell_size) {
     }
   grid.lo = lo;
   grid.size = cell_size;
-  for (int d = 0; d < 3; ++d) grid.n[d] = std::max(1L, static_cast<long>((hi[d] - lo[d]) / cell_size) + 1);
+  double cells_in_box = 1;
+  for (int d = 0; d < 3; ++d) {
+    const double cells = std::min((hi[d] - lo[d]) / cell_size, 0x1p50) + 1;
+    grid.n[d] = std::max(1L, static_cast<long>(cells));
+    cells_in_box *= static_cast<double>(grid.n[d]);
+  }
+  if (cells_in_box > 8.0 * static_cast<double>(count) + 1024) {
+    grid.dense = false;
+    std::vector<CellGrid::Cell> cell(count);
+    for (std::size_t i = 0; i < count; ++i)
+      cell[i] = {grid.coord(disc.x(i, 2), 2), grid.coord(disc.x(i, 1), 1), grid.coord(disc.x(i, 0), 0)};
+    grid.points.resize(count);
+    std::iota(grid.points.begin(), grid.points.end(), 0u);
+    std::stable_sort(grid.points.begin(), grid.points.end(), [&](std::uint32_t a, std::uint32_t b) { return cell[a] < cell[b]; });
+    for (std::size_t s = 0; s < count; ++s)
+      if (s == 0 || cell[grid.points[s]] != grid.occupied.back()) {
+        grid.occupied.push_back(cell[grid.points[s]]);
+        grid.start.push_back(s);
+      }
+    grid.start.push_back(count);
+    return grid;
+  }
   const std::size_t cells = static_cast<std::size_t>(grid.n[0] * grid.n[1] * grid.n[2]);
   std::vector<std::uint64_t> cell_of(count);
   grid.start.assign(cells + 1, 0);
@@ -107,8 +148,8 @@ class NeighborSearch {
     for (long k = std::max(0L, c[2] - 1); k <= std::min(grid_.n[2] - 1, c[2] + 1); ++k)
       for (long j = std::max(0L, c[1] - 1); j <= std::min(grid_.n[1] - 1, c[1] + 1); ++j)
         for (long l = std::max(0L, c[0] - 1); l <= std::min(grid_.n[0] - 1, c[0] + 1); ++l) {
-          const long cell = grid_.index(l, j, k);
-          for (std::uint64_t s = grid_.start[cell]; s < grid_.start[cell + 1]; ++s) {
+          const auto [begin, end] = grid_.range(l, j, k);
+          for (std::uint64_t s = begin; s < end; ++s) {
             const std::uint32_t other = grid_.points[s];
             if (other == i) continue;
             const Vec3 xj = disc_.x.get(other);
