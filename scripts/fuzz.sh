@@ -3,6 +3,8 @@
 # it for SECONDS (default 90) on a corpus seeded with every example and test deck. Fails (exit 1, the input in
 # build-fuzz/findings/) on any input that crashes, trips a sanitizer, leaks, throws anything but an input error,
 # or takes more than 10 s. Usage: scripts/fuzz.sh [SECONDS] [extra libFuzzer options, e.g. -runs=1000000]
+# The mutation seed is FUZZ_SEED (default 1, so that a CI run explores the same inputs each time; give another
+# number, or 0 for a random one, to explore further).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-90}
@@ -18,4 +20,4 @@ done
 export OMP_NUM_THREADS=1
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ./build-fuzz/fuzz/deck_fuzzer "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=3072 \
-  -artifact_prefix=build-fuzz/findings/ -print_final_stats=1 "$@"
+  -artifact_prefix=build-fuzz/findings/ -print_final_stats=1 -seed="${FUZZ_SEED:-1}" "$@"
