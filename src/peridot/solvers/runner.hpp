@@ -23,7 +23,8 @@ struct RunOutcome {
 /// Runs the problem. Throws InputError (before writing anything) or NumericalError (after closing every
 /// output written so far). The results (Exodus file, history, resolved deck) are written as NAME.partial and
 /// moved into place, replacing those of an earlier run, when the run ends: completed or failed numerically.
-/// SIGINT, SIGTERM and SIGUSR1 stop it after the current step with that step's frame and row written; its
+/// SIGINT, SIGTERM and SIGUSR1 stop it after the current step (distributed: within 32 steps, all ranks after
+/// the same one) with that step's frame and row written; its
 /// results then stay NAME.partial beside the earlier run's, which are untouched (so does a killed run's). A
 /// second signal ends the process at once.
 RunOutcome run_problem(const Problem& problem, const RunOptions& options);
