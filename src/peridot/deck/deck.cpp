@@ -397,7 +397,9 @@ struct Parser {
   // -- bodies, pre-cracks, node sets -----------------------------------------------------------
 
   void parse_bodies(const Value& v) {
-    if (v.node.IsMap() && v.node.size() == 0) ctx.error(v.pos, "bodies", "no body is given; a deck needs at least one");
+    // `bodies: {}`, or `bodies:` with every body commented out (a null value): a missing key is reported already.
+    const bool empty = (v.node.IsMap() && v.node.size() == 0) || v.node.IsNull();
+    if (empty && v.key_pos.line > 0) ctx.error(v.pos, "bodies", "no body is given; a deck needs at least one");
     std::vector<std::string_view> materials = names_of(p.materials);
     for_each_named(v, "bodies", [&](const std::string& name, const SourcePos& pos, const YAML::Node& node,
                                     const std::string& path) {
