@@ -1,6 +1,7 @@
 // peridot: the command-line program.
 //   peridot run deck.yaml      run a deck (exit 2: bad deck, nothing written; exit 3: numerical failure;
 //                              128 + N: stopped by signal N (SIGINT, SIGTERM, SIGUSR1) after a step)
+//   peridot run deck.yaml --restart output/checkpoint_N.nc   continue a run from its checkpoint, bitwise
 //   peridot check deck.yaml    validate a deck and print what the run would be, without running it
 //   peridot info [--markdown]  every model, key, unit and default, from the schema the parser uses
 //   peridot info --model NAME [--markdown]  the documentation page of a material model
@@ -14,6 +15,7 @@
 #include "peridot/deck/deck.hpp"
 #include "peridot/deck/model_schema.hpp"
 #include "peridot/parallel/communicator.hpp"
+#include "peridot/solvers/checkpoint.hpp"
 #include "peridot/solvers/runner.hpp"
 #include "peridot/solvers/simulation.hpp"
 
@@ -43,7 +45,7 @@ int main(int argc, char** argv) {
   std::string deck;
   int threads = 0;
   bool quiet = false, markdown = false;
-  std::string output_dir, model;
+  std::string output_dir, model, restart;
 
   // More threads than a few per core only slows a run down; far more exhausts the machine.
   const int max_threads = 8 * omp_get_num_procs();
@@ -53,6 +55,9 @@ int main(int argc, char** argv) {
   run->add_option("-t,--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")->check(thread_count);
   run->add_flag("-q,--quiet", quiet, "no progress line and no log on standard output");
   run->add_option("-o,--output-dir", output_dir, "write the outputs here instead of the deck's output.directory");
+  run->add_option("--restart", restart,
+                  "continue from this checkpoint (output.checkpoint) of the same deck; the end time, step count and "
+                  "output settings may differ");
 
   CLI::App* check = app.add_subcommand("check", "validate a deck and describe the run without running it");
   check->add_option("deck", deck, "the YAML deck")->required();
@@ -99,6 +104,7 @@ int main(int argc, char** argv) {
     peridot::RunOptions options;
     options.progress = !quiet;
     options.log = quiet || !root ? nullptr : &std::cout;
+    options.restart = restart;
     // Stopped by a signal after a step: the shell's convention, 128 + the signal's number.
     const peridot::RunOutcome outcome = peridot::run_problem(problem, options);
     return outcome.signal == 0 ? 0 : 128 + outcome.signal;

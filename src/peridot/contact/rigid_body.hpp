@@ -25,6 +25,7 @@
 #include "peridot/deck/problem.hpp"
 #include "peridot/materials/model_context.hpp"
 #include "peridot/state/fields.hpp"
+#include "peridot/state/state_arrays.hpp"
 
 namespace peridot {
 
@@ -67,6 +68,15 @@ class RigidBodies {
   void kick(double dt);
   /// Free bodies: d += Δt v.
   void drift(double dt);
+  /// Each body's offset, velocity and the points' force on it, for checkpoints.
+  void state_arrays(StateArrays& arrays) {
+    for (std::size_t k = 0; k < bodies_.size(); ++k) {
+      const std::string prefix = "rigid_body" + std::to_string(k) + ".";
+      arrays.global(prefix + "offset", &bodies_[k].offset);
+      arrays.global(prefix + "velocity", &bodies_[k].velocity);
+      arrays.global(prefix + "force", &bodies_[k].force);
+    }
+  }
   /// Sets body k's contact force (N), the sum over every rank of −Σ b V of contacts(k).
   void set_force(std::size_t k, Vec3 force) { bodies_[k].force = force; }
 

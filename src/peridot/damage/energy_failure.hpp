@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "peridot/materials/model_context.hpp"
+#include "peridot/state/state_arrays.hpp"
 
 namespace peridot {
 
@@ -44,6 +45,12 @@ class EnergyFailure {
   double threshold(std::size_t block) const { return threshold_[block]; }
   /// W per bond (J/m⁶), as of the last commit.
   const std::vector<double>& work() const { return work_; }
+  /// W, T and e per bond, for checkpoints.
+  void state_arrays(StateArrays& arrays) {
+    arrays.bonds("energy_failure.work", work_, work_.size());
+    arrays.bonds("energy_failure.force", force_, force_.size());
+    arrays.bonds("energy_failure.extension", extension_, extension_.size());
+  }
 
   /// Adds the accepted step's work to every intact bond under the criterion: W += ½ (T_prev + T)(e − e_prev),
   /// with T = t_ij + t_ji from the kernels at u with `fields` (the last evaluation's θ and history: call before

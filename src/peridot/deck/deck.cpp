@@ -753,6 +753,16 @@ struct Parser {
         o.probes.push_back({q["name"].text, pos, q["point"].point, q["field"].text});
       });
     }
+    if (r.given("checkpoint")) {
+      MapReader c(ctx, r["checkpoint"].node, r["checkpoint"].key_pos, r.path_of("checkpoint"),
+                  deck_section("output.checkpoint").keys);
+      o.checkpoint_every = c["every"].integer;
+      o.checkpoint_wall_time = c["wall_time"].number;
+      o.checkpoint_keep = c["keep"].integer;
+      if (!o.checkpoints() && !c.given("every") && !c.given("wall_time"))
+        ctx.error(r["checkpoint"].key_pos, r.path_of("checkpoint"),
+                  "give every (steps) or wall_time (e.g. 2 h), or both: when to write a checkpoint");
+    }
   }
 
   // -- the whole deck ----------------------------------------------------------------------------

@@ -250,6 +250,13 @@ struct OutputSpec {
   std::vector<std::string> reaction_sets;  ///< node sets whose reaction force is recorded
   std::vector<ProbeSpec> probes;
   bool progress = true;
+  /// Checkpoints (solvers/checkpoint.hpp), checkpoint_<step>.nc in the output folder: every this many steps
+  /// (0: not by steps), every this much wall-clock time (s; 0: not by time), and on a stop signal when either
+  /// is set. The last `checkpoint_keep` are kept.
+  std::int64_t checkpoint_every = 0;
+  double checkpoint_wall_time = 0;
+  std::int64_t checkpoint_keep = 2;
+  bool checkpoints() const { return checkpoint_every > 0 || checkpoint_wall_time > 0; }
 };
 
 struct Problem {

@@ -379,6 +379,10 @@ void emit_solver_and_output(YAML::Emitter& out, const Problem& p) {
     }
     out << YAML::EndSeq << YAML::EndMap;
   }
+  if (o.checkpoints())
+    out << YAML::Key << "checkpoint" << YAML::Value << YAML::BeginMap << YAML::Key << "every" << YAML::Value
+        << o.checkpoint_every << YAML::Key << "wall_time" << YAML::Value << number(o.checkpoint_wall_time) << YAML::Key
+        << "keep" << YAML::Value << o.checkpoint_keep << YAML::EndMap;
   out << YAML::Key << "progress" << YAML::Value << o.progress;
   out << YAML::EndMap;
 }

@@ -52,7 +52,7 @@ const std::vector<UnitInfo>& unit_table() {
       {Unit::none, "dimensionless", {{"-", 1.0}}},
       {Unit::length, "length", {{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"um", 1e-6}, {"µm", 1e-6}, {"nm", 1e-9}}},
       {Unit::area, "area", {{"m^2", 1.0}, {"cm^2", 1e-4}, {"mm^2", 1e-6}}},
-      {Unit::time, "time", {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"µs", 1e-6}, {"ns", 1e-9}}},
+      {Unit::time, "time", {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"µs", 1e-6}, {"ns", 1e-9}, {"min", 60.0}, {"h", 3600.0}}},
       {Unit::pressure, "pressure", {{"Pa", 1.0}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}}},
       {Unit::density, "density", {{"kg/m^3", 1.0}, {"g/cm^3", 1e3}}},
       {Unit::energy_per_area, "energy per area", {{"J/m^2", 1.0}, {"N/m", 1.0}, {"kJ/m^2", 1e3}}},
@@ -421,6 +421,8 @@ std::vector<SectionSpec> make_sections() {
                {{.key = "directory", .type = VT::text, .default_yaml = "output", .description = "output folder, relative to the deck"},
                 {.key = "exodus", .type = VT::mapping, .description = "Exodus II fields (see output.exodus); omit for none"},
                 {.key = "history", .type = VT::mapping, .description = "CSV time history (see output.history); omit for none"},
+                {.key = "checkpoint", .type = VT::mapping,
+                 .description = "restart files (see output.checkpoint); omit for none"},
                 {.key = "progress", .type = VT::boolean, .default_yaml = "true", .description = "print progress to the terminal"}}});
   s.push_back({"output.exodus", "Exodus II field output",
                {{.key = "every", .type = VT::integer, .default_yaml = "100", .range = at_least_one, .description = "steps between frames"},
@@ -430,6 +432,16 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "file", .type = VT::text, .default_yaml = "history.csv", .description = "file name in the output folder"},
                 {.key = "reaction", .type = VT::names, .description = "node sets whose reaction force is recorded"},
                 {.key = "probes", .type = VT::sequence, .description = "point samples (see output.history.probes[i])"}}});
+  s.push_back({"output.checkpoint",
+               "checkpoint_<step>.nc files in the output folder, from which `peridot run DECK --restart FILE` continues "
+               "bitwise as if never stopped (on any number of ranks and threads); also written when a stop signal "
+               "(SIGINT, SIGTERM, SIGUSR1) ends the run. Give every, wall_time or both",
+               {{.key = "every", .type = VT::integer, .default_yaml = "0", .range = non_negative,
+                 .description = "steps between checkpoints (0: not by steps)"},
+                {.key = "wall_time", .type = VT::number, .unit = Unit::time, .default_yaml = "0", .range = non_negative,
+                 .description = "wall-clock time between checkpoints, e.g. 2 h or 30 min (0: not by time)"},
+                {.key = "keep", .type = VT::integer, .default_yaml = "2", .range = at_least_one,
+                 .description = "the newest checkpoints kept; older ones are removed"}}});
   s.push_back({"output.history.probes[i]", "the value of a field at the point nearest to a position",
                {{.key = "name", .type = VT::text, .description = "column name", .required = true},
                 {.key = "point", .type = VT::point, .description = "position (m)", .required = true},

@@ -6,6 +6,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -41,6 +43,7 @@ CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns)
     line_ += quoted(columns_[k]);
   }
   line_ += '\n';
+  header_ = line_;
   try {
     write_line();
   } catch (...) {
@@ -54,6 +57,7 @@ CsvWriter::CsvWriter(CsvWriter&& other) noexcept
     : fd_(std::exchange(other.fd_, -1)),
       path_(std::move(other.path_)),
       columns_(std::move(other.columns_)),
+      header_(std::move(other.header_)),
       line_(std::move(other.line_)) {}
 
 CsvWriter& CsvWriter::operator=(CsvWriter&& other) noexcept {
@@ -62,6 +66,7 @@ CsvWriter& CsvWriter::operator=(CsvWriter&& other) noexcept {
     fd_ = std::exchange(other.fd_, -1);
     path_ = std::move(other.path_);
     columns_ = std::move(other.columns_);
+    header_ = std::move(other.header_);
     line_ = std::move(other.line_);
   }
   return *this;
@@ -106,6 +111,33 @@ void CsvWriter::write_line() {
     p += written;
     left -= static_cast<std::size_t>(written);
   }
+}
+
+std::int64_t CsvWriter::copy_rows(const std::string& earlier, std::int64_t last_step, std::int64_t every) {
+  PERIDOT_REQUIRE(fd_ >= 0, "copy_rows on a closed CSV writer");
+  std::ifstream in(earlier, std::ios::binary);
+  if (!in) throw_errno(earlier, "cannot read", errno);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string all = text.str();
+  if (all.compare(0, header_.size(), header_) != 0)
+    throw std::runtime_error("CSV history '" + earlier + "' has other columns than this run writes");
+  std::int64_t copied = 0;
+  for (std::size_t at = header_.size(); at < all.size();) {
+    const std::size_t end = all.find('\n', at);
+    if (end == std::string::npos) break;  // a line cut short by a kill
+    const std::size_t comma = all.find(',', at);
+    if (comma < end) {
+      const auto step = static_cast<std::int64_t>(std::strtod(all.c_str() + comma + 1, nullptr));
+      if (step <= last_step && step % every == 0) {
+        line_.assign(all, at, end + 1 - at);
+        write_line();
+        ++copied;
+      }
+    }
+    at = end + 1;
+  }
+  return copied;
 }
 
 }  // namespace peridot

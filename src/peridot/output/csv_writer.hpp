@@ -4,6 +4,7 @@
 // line, straight to the kernel with no user-space buffer, so a killed run leaves only whole lines (the
 // kernel does not split a write to a regular file unless the disk is full or the process is stopped inside
 // that very call, which a kill between rows cannot do).
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,11 @@ class CsvWriter {
 
   /// One value per column (std::logic_error otherwise); throws std::runtime_error if the write fails.
   void write_row(const std::vector<double>& values);
+  /// A restart's continuation (solvers/runner.hpp): appends the rows of the earlier file `earlier` whose
+  /// second column (the step) is at most last_step and a multiple of every, byte for byte (a row a stopped run
+  /// wrote off its schedule is not kept; a last line without its line break is not a row). Returns how many.
+  /// Throws std::runtime_error when that file cannot be read or has another header.
+  std::int64_t copy_rows(const std::string& earlier, std::int64_t last_step, std::int64_t every);
   void close();  ///< idempotent; the destructor closes too
 
   const std::vector<std::string>& columns() const { return columns_; }
@@ -33,7 +39,8 @@ class CsvWriter {
   int fd_ = -1;
   std::string path_;
   std::vector<std::string> columns_;
-  std::string line_;  // reused for every row
+  std::string header_;  // the header line as written
+  std::string line_;    // reused for every row
 };
 
 }  // namespace peridot

@@ -383,4 +383,50 @@ void ExodusWriter::write_frame(double time, const State& state) {
   frames_ = step;
 }
 
+int ExodusWriter::copy_frames(const std::string& earlier, double time_step, std::int64_t last_step, std::int64_t every) {
+  PERIDOT_REQUIRE(exoid_ >= 0, "copy_frames on a closed Exodus writer");
+  int cpu_word_size = 8, io_word_size = 0;
+  float version = 0;
+  const int source = ex_open(earlier.c_str(), EX_READ, &cpu_word_size, &io_word_size, &version);
+  if (source < 0) throw_exodus(earlier, "ex_open", source);
+  struct Closer {
+    int id;
+    ~Closer() { ex_close(id); }
+  } closer{source};
+  auto read_check = [&](int status, const char* what) {
+    if (status < 0) throw_exodus(earlier, what, status);
+  };
+  ex_init_params params{};
+  read_check(ex_get_init_ext(source, &params), "ex_get_init_ext");
+  int variables = 0;
+  read_check(ex_get_variable_param(source, EX_NODAL, &variables), "ex_get_variable_param");
+  std::vector<std::string> names(static_cast<std::size_t>(variables));
+  for (int k = 0; k < variables; ++k) {
+    char name[MAX_STR_LENGTH + 1] = {};
+    read_check(ex_get_variable_name(source, EX_NODAL, k + 1, name), "ex_get_variable_name");
+    names[static_cast<std::size_t>(k)] = name;
+  }
+  if (static_cast<std::size_t>(params.num_nodes) != num_points_ || names != variable_names_)
+    throw std::runtime_error("Exodus file '" + earlier + "' has other points or fields than this run writes");
+  const int steps = static_cast<int>(ex_inquire_int(source, EX_INQ_TIME));
+  std::vector<double> values(num_points_);
+  int copied = 0;
+  for (int step = 1; step <= steps; ++step) {
+    double time = 0;
+    read_check(ex_get_time(source, step, &time), "ex_get_time");
+    const auto run_step = static_cast<std::int64_t>(std::llround(time / time_step));
+    if (run_step > last_step || run_step % every != 0) continue;
+    const int to = frames_ + 1;
+    for (int var = 1; var <= variables; ++var) {
+      read_check(ex_get_var(source, step, EX_NODAL, var, 1, static_cast<int64_t>(num_points_), values.data()), "ex_get_var");
+      check(ex_put_var(exoid_, to, EX_NODAL, var, 1, static_cast<int64_t>(num_points_), values.data()), "ex_put_var");
+    }
+    check(ex_put_time(exoid_, to, &time), "ex_put_time");
+    check(ex_update(exoid_), "ex_update");
+    frames_ = to;
+    ++copied;
+  }
+  return copied;
+}
+
 }  // namespace peridot

@@ -63,6 +63,12 @@ class ExodusWriter {
   /// whose write_frame() returned, and possibly nothing of the frame being written.
   void write_frame(double time, const State& state);
 
+  /// A restart's continuation (solvers/runner.hpp): appends the frames of the earlier file `earlier` whose step,
+  /// round(time / time_step), is at most last_step and a multiple of every (so that a frame a stopped run wrote
+  /// off its schedule is not kept), value for value. Returns how many. Throws std::runtime_error when that file
+  /// cannot be read or has other points or fields than this writer.
+  int copy_frames(const std::string& earlier, double time_step, std::int64_t last_step, std::int64_t every);
+
   /// Closes the file; idempotent. Throws std::runtime_error if the final close fails.
   void close();
 

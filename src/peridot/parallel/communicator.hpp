@@ -77,6 +77,7 @@ MPI_Datatype mpi_type();
 template <> inline MPI_Datatype mpi_type<double>() { return MPI_DOUBLE; }
 template <> inline MPI_Datatype mpi_type<std::uint32_t>() { return MPI_UINT32_T; }
 template <> inline MPI_Datatype mpi_type<std::int32_t>() { return MPI_INT32_T; }
+template <> inline MPI_Datatype mpi_type<unsigned char>() { return MPI_UNSIGNED_CHAR; }
 
 template <class T>
 std::vector<T> Communicator::gather(const std::vector<T>& local) const {

@@ -259,6 +259,30 @@ bool CorrespondenceBlocks::symmetry_wall_active(std::size_t wall) const {
   return false;
 }
 
+void CorrespondenceBlocks::state_arrays(StateArrays& arrays) {
+  Impl& m = *impl_;
+  if (m.blocks.empty()) return;
+  const std::size_t n = m.committed.rotation.size();
+  arrays.points("correspondence.rotation", m.committed.rotation.data(), n, 9, 0);
+  arrays.points("correspondence.left_stretch", m.committed.left_stretch.data(), n, 9, 0);
+  arrays.points("correspondence.unrotated_stress", m.committed.unrotated_stress.data(), n, 9, 0);
+  arrays.points("correspondence.hourglass_force", m.hourglass_force, m.hourglass_force.size());
+  arrays.points("correspondence.previous_hourglass_force", m.previous_hourglass_force, m.previous_hourglass_force.size());
+  arrays.points("correspondence.previous_u", m.previous_u, m.previous_u.size());
+  arrays.points("correspondence.hourglass_work", m.hourglass_work, m.hourglass_work.size());
+  arrays.global("correspondence.have_previous", &m.have_previous);
+  if (!m.ctx.mirror.planes.empty()) arrays.global("correspondence.mirror_active", &m.ctx.mirror.active);
+  for (std::size_t k = 0; k < m.ctx.mirror.planes.size(); ++k)
+    arrays.global("correspondence.plane" + std::to_string(k) + ".active", &m.ctx.mirror.planes[k].active);
+  for (std::size_t b = 0; b < m.blocks.size(); ++b)
+    std::visit([&](auto& block) {
+      using History = typename std::decay_t<decltype(block.history)>::value_type;
+      if constexpr (!std::is_empty_v<History>)
+        arrays.points("correspondence.block" + std::to_string(m.block_index[b]) + ".history", block.history.data(),
+                      block.history.size(), 1, block.range.begin);
+    }, m.blocks[b]);
+}
+
 void CorrespondenceBlocks::strain_energy_density(std::vector<double>& W) const {
   const Impl& m = *impl_;
   for (std::size_t k = 0; k < m.blocks.size(); ++k) {

@@ -18,6 +18,7 @@
 #include "peridot/deck/problem.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/parallel/halo.hpp"
+#include "peridot/state/state_arrays.hpp"
 #include "peridot/solvers/internal_force.hpp"
 #include "peridot/state/fields.hpp"
 
@@ -48,6 +49,9 @@ class CorrespondenceBlocks {
   /// v). Collective when there are symmetry planes.
   void commit(const VectorField& u, const VectorField& v, MaterialHistory& history);
 
+  /// The committed stress (R, V, τ), the laws' histories, the hourglass forces and work, and which symmetry
+  /// planes still act: for checkpoints.
+  void state_arrays(StateArrays& arrays);
   /// Stored elastic energy density (J/m³, per reference volume) into W at every correspondence point.
   void strain_energy_density(std::vector<double>& W) const;
   /// Work done on each point by the hourglass forces since t = 0, with the sign of a stored energy (J):

@@ -490,6 +490,22 @@ std::string DynamicRelaxation::describe() const {
   return out;
 }
 
+void DynamicRelaxation::state_arrays(StateArrays& arrays) {
+  const std::size_t owned = sim_.num_owned();
+  arrays.points("relaxation.velocity", velocity_, owned, 3);
+  arrays.points("relaxation.force", force_, owned, 3);
+  arrays.points("relaxation.previous_force", previous_force_, owned, 3);
+  arrays.points("relaxation.committed_u", committed_u_, owned);
+  arrays.points("relaxation.accepted_body_force", accepted_body_force_, owned);
+  arrays.points("relaxation.body_force", body_force_, std::min(owned, body_force_.size()));
+  arrays.global("relaxation.loads_jumped", &loads_jumped_);
+  arrays.global("relaxation.load_factor", &load_factor_);
+  arrays.global("relaxation.residual", &residual_);
+  arrays.global("relaxation.load_scale", &load_scale_);
+  arrays.global("relaxation.iterations", &iterations_);
+  arrays.global("relaxation.broken", &broken_);
+}
+
 std::vector<std::string> DynamicRelaxation::history_columns() const {
   return {"load_factor", "residual", "iterations", "bonds_broken"};
 }

@@ -49,6 +49,7 @@ class DynamicRelaxation final : public TimeIntegrator {
   void initialize() override;
   void advance() override;
   std::string describe() const override;
+  void state_arrays(StateArrays& arrays) override;
   std::vector<std::string> history_columns() const override;
   std::vector<double> history_values() const override;
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -17,6 +18,7 @@
 #include "peridot/materials/models.hpp"
 #include "peridot/output/csv_writer.hpp"
 #include "peridot/output/exodus_writer.hpp"
+#include "peridot/solvers/checkpoint.hpp"
 #include "peridot/state/point_fields.hpp"
 
 namespace peridot {
@@ -171,8 +173,9 @@ void write_file_atomically(const fs::path& path, const std::string& text) {
 /// Distributed, only rank 0 writes (enabled).
 class RunLog {
  public:
-  RunLog(const fs::path& path, std::ostream* echo, bool enabled) : enabled_(enabled), echo_(echo) {
-    if (enabled_) file_.open(path);
+  RunLog(const fs::path& path, std::ostream* echo, bool enabled, bool append)
+      : enabled_(enabled), echo_(echo) {
+    if (enabled_) file_.open(path, append ? std::ios::app : std::ios::trunc);
   }
   void line(const std::string& text) {
     if (!enabled_) return;
@@ -227,6 +230,9 @@ class History {
     columns_ = std::move(columns);
   }
   void close() { writer_->close(); }
+  std::int64_t copy_rows(const std::string& earlier, std::int64_t last_step, std::int64_t every) {
+    return writer_->copy_rows(earlier, last_step, every);
+  }
   /// One row from the gathered outputs (Simulation::gather_outputs with totals; rank 0). Returns the name of
   /// its first non-finite column ("" when every value is finite); the row is written either way.
   std::string write() {
@@ -305,12 +311,35 @@ class Progress {
   Clock::time_point start_, last_;
 };
 
+/// The earlier results a restart continues: a stopped run's NAME.partial (moved aside to
+/// NAME.before-restart, as the new NAME.partial takes its name), else a finished run's NAME. Empty: none.
+fs::path earlier_results(const fs::path& dir, const std::string& name) {
+  const fs::path partial = dir / (name + ".partial"), aside = dir / (name + ".before-restart"), done = dir / name;
+  if (fs::exists(partial)) {
+    fs::rename(partial, aside);
+    return aside;
+  }
+  if (fs::exists(aside)) return aside;  // left by a restart stopped before it had copied them
+  if (fs::exists(done)) return done;
+  return {};
+}
+
 }  // namespace
 
 RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
   Simulation sim(problem);  // every input error surfaces here, before anything is written
   const Communicator& comm = sim.communicator();
   const bool root = comm.is_root();  // distributed, rank 0 writes every output
+  const bool restart = !options.restart.empty();
+  if (restart) {  // checked and restored before anything is written
+    const CheckpointData checkpoint = read_checkpoint(options.restart, sim);
+    if (checkpoint.step > sim.total_steps())
+      throw InputError(SourcePos{options.restart, 0, 0},
+                       fmt::format("restart: '{}' is at step {}, after this deck's end (step {}); give a later end time "
+                                   "or more steps", options.restart, checkpoint.step, sim.total_steps()));
+    sim.initialize();
+    restore_checkpoint(sim, checkpoint, options.restart);
+  }
 
   // A failure to write on rank 0 stops every rank (the others would wait for it in the next collective), and
   // goes into the run log as well as to stderr (the log may be the file that cannot be written).
@@ -338,9 +367,9 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
     fs::create_directories(dir);
     write_file_atomically(results.partial("resolved_deck.yaml"), resolved_deck_yaml(problem));
   });
-  RunLog log(dir / "run.log", options.log, root);
+  RunLog log(dir / "run.log", options.log, root, restart);
   log_of_failures = &log;
-  log.line("peridot run " + problem.deck_path);
+  log.line("peridot run " + problem.deck_path + (restart ? " --restart " + options.restart : ""));
   for (const Diagnostic& w : problem.warnings) log.line(w.str());
   std::istringstream setup(describe_setup(sim));
   for (std::string line; std::getline(setup, line);) log.line(line);
@@ -353,7 +382,10 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
 
   std::unique_ptr<ExodusWriter> exodus;
   std::unique_ptr<History> history;
+  fs::path earlier_exodus, earlier_history;  // a restart's earlier results, found before NAME.partial is new
   on_root([&] {
+    if (restart && output.exodus_every > 0) earlier_exodus = earlier_results(dir, output.exodus_file);
+    if (restart && output.history_every > 0) earlier_history = earlier_results(dir, output.history_file);
     if (output.exodus_every > 0) {
       std::vector<NodeSetOutput> sets;
       for (const NodeSet& set : sim.output_node_sets()) sets.push_back({set.name, set.points});
@@ -363,6 +395,35 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
     }
     if (output.history_every > 0) history = std::make_unique<History>(results.partial(output.history_file), sim);
   });
+  if (restart) {  // the earlier frames and rows up to the checkpoint, those on this run's schedule
+    const std::int64_t step = sim.state().step;
+    log.line(fmt::format("restarted from {} at step {}, t = {:.6g} s", options.restart, step, sim.state().time));
+    std::vector<std::string> notes;
+    on_root([&] {
+      auto carry_over = [&](const std::string& name, const fs::path& earlier, auto&& copy) {
+        if (earlier.empty()) {
+          notes.push_back(fmt::format("{}: no earlier results to continue; it begins at step {}", name, step));
+          return;
+        }
+        try {
+          notes.push_back(fmt::format("{}: {} from {} up to step {}", name, copy(earlier.string()), earlier.filename().string(), step));
+        } catch (const std::runtime_error& e) {
+          notes.push_back(fmt::format("{}: not continued ({}); it begins at step {}", name, e.what(), step));
+          return;
+        }
+        if (earlier.extension() == ".before-restart") fs::remove(earlier);
+      };
+      if (exodus)
+        carry_over(output.exodus_file, earlier_exodus, [&](const std::string& earlier) {
+          return fmt::format("{} frames", exodus->copy_frames(earlier, sim.time_step(), step, output.exodus_every));
+        });
+      if (history)
+        carry_over(output.history_file, earlier_history, [&](const std::string& earlier) {
+          return fmt::format("{} rows", history->copy_rows(earlier, step, output.history_every));
+        });
+    });
+    for (const std::string& note : notes) log.line(note);
+  }
   // Closed before they are moved into place; a failure to close is a failure to write.
   auto close_results = [&](bool publish) {
     on_root([&] {
@@ -390,19 +451,54 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
                                        comm.broadcast(non_finite, failing), sim.state().step, sim.state().time));
   };
 
+  // Checkpoints: the newest output.checkpoint_keep this run wrote stay (an earlier run's are left alone).
+  std::vector<fs::path> checkpoints;
+  auto last_checkpoint = std::chrono::steady_clock::now();
+  std::int64_t checkpoint_step = restart ? sim.state().step : -1;
+  auto write_checkpoint = [&] {
+    const CheckpointData data = collect_checkpoint(sim);
+    const fs::path path = dir / fmt::format("checkpoint_{}.nc", sim.state().step);
+    on_root([&] {
+      write_checkpoint_file(path.string(), data);
+      checkpoints.push_back(path);
+      while (checkpoints.size() > static_cast<std::size_t>(output.checkpoint_keep)) {
+        fs::remove(checkpoints.front());
+        checkpoints.erase(checkpoints.begin());
+      }
+    });
+    log.line(fmt::format("checkpoint {} at step {}, t = {:.6g} s", path.filename().string(), sim.state().step,
+                              sim.state().time));
+    last_checkpoint = std::chrono::steady_clock::now();
+    checkpoint_step = sim.state().step;
+  };
+  // Due by steps, or by wall-clock time (distributed: when any rank's clock says so, looked at with the stop
+  // signals, so that every rank writes after the same step).
+  auto checkpoint_due = [&](bool looked) {
+    const std::int64_t step = sim.state().step;
+    if (output.checkpoint_every > 0 && step % output.checkpoint_every == 0) return true;
+    if (output.checkpoint_wall_time <= 0 || !looked) return false;
+    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count();
+    return comm.max(since >= output.checkpoint_wall_time ? 1.0 : 0.0) > 0;
+  };
+
   Progress progress(options.progress && output.progress && root);
   const StopSignals stop;
   RunOutcome outcome;
   try {
-    sim.initialize();
-    write_outputs(sim.total_steps() == 0);
+    if (!restart) {
+      sim.initialize();
+      write_outputs(sim.total_steps() == 0);
+    }
     while (sim.state().step < sim.total_steps()) {
       sim.step();
       // Every rank stops after the same step, whichever received the signal. Distributed, the ranks ask each
       // other every stop_check_interval steps: a reduction per step slows small runs on busy cores noticeably.
+      const bool looked = comm.serial() || sim.state().step % stop_check_interval == 0;
       if (comm.serial()) outcome.signal = stop.received();
-      else if (sim.state().step % stop_check_interval == 0) outcome.signal = static_cast<int>(comm.max(stop.received()));
-      write_outputs(sim.state().step == sim.total_steps() || outcome.signal != 0);
+      else if (looked) outcome.signal = static_cast<int>(comm.max(stop.received()));
+      const bool last = sim.state().step == sim.total_steps();
+      write_outputs(last || outcome.signal != 0);
+      if (output.checkpoints() && (checkpoint_due(looked) || last || outcome.signal != 0)) write_checkpoint();
       progress.update(sim);
       if (outcome.signal != 0) break;
     }
@@ -415,10 +511,15 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
   if (outcome.signal != 0) {
     close_results(false);
     const std::string name = outcome.signal == SIGINT ? "SIGINT" : outcome.signal == SIGTERM ? "SIGTERM" : "SIGUSR1";
-    const std::string saved = fmt::format(
+    std::string saved = fmt::format(
         "stopped by {} after step {} of {}, t = {:.6g} s: results up to this step are in {} (in {}); the "
         "previous run's results there are untouched",
         name, sim.state().step, sim.total_steps(), sim.state().time, results.partial_names(), dir.string());
+    if (checkpoint_step == sim.state().step)
+      saved += fmt::format("; continue with: peridot run {} --restart {}", problem.deck_path,
+                           (dir / fmt::format("checkpoint_{}.nc", checkpoint_step)).string());
+    else
+      saved += "; no checkpoint (output.checkpoint is not set)";
     log.line(saved);
     if (!options.log && root) std::cerr << saved << '\n';
     return outcome;

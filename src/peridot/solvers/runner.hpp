@@ -13,6 +13,7 @@ namespace peridot {
 struct RunOptions {
   bool progress = true;        ///< progress line on stderr (also off when output.progress is false)
   std::ostream* log = nullptr; ///< extra copy of the log (stdout by the CLI)
+  std::string restart;         ///< a checkpoint to continue from (solvers/checkpoint.hpp); empty: from t = 0
 };
 
 /// How a run that returned ended.
@@ -27,6 +28,12 @@ struct RunOutcome {
 /// the same one) with that step's frame and row written; its
 /// results then stay NAME.partial beside the earlier run's, which are untouched (so does a killed run's). A
 /// second signal ends the process at once.
+/// Checkpoints (output.checkpoint) go to checkpoint_<step>.nc in the output folder, every N steps, every so much
+/// wall-clock time, at the end and when a signal stops the run; the newest `keep` this run wrote are kept.
+/// A restart (options.restart) checks the checkpoint (InputError, nothing written), continues from its step,
+/// appends to run.log, and writes new results that begin with the earlier run's frames and rows up to the
+/// checkpoint's step (from NAME.partial of a stopped run, else NAME), those on the schedule only: the files
+/// end up byte for byte those of a run never stopped.
 RunOutcome run_problem(const Problem& problem, const RunOptions& options);
 
 /// The summary `peridot check` prints: points, bonds, memory, time steps.

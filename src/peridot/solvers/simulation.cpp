@@ -324,6 +324,39 @@ Halo::Traffic Simulation::communication() const {
   return t;
 }
 
+StateArrays Simulation::state_arrays() {
+  StateArrays arrays;
+  const std::size_t n = disc_.num_points(), nnz = bonds_.num_bonds();
+  arrays.global("time", &state_.time);
+  arrays.global("step", &state_.step);
+  arrays.points("u", state_.u, n);
+  arrays.points("v", state_.v, n);
+  arrays.points("force", state_.force, n);
+  arrays.points("body_force", state_.body_force, n);
+  arrays.points("damage", state_.damage, n);
+  arrays.points("dilatation", state_.dilatation, n);
+  MaterialHistory& history = state_.history;
+  for (std::size_t k = 0; k < history.bond.size(); ++k) arrays.bonds("history.bond" + std::to_string(k), history.bond[k], nnz);
+  for (std::size_t k = 0; k < history.point.size(); ++k) arrays.points("history.point" + std::to_string(k), history.point[k], n);
+  arrays.points("history.plastic_strain", history.plastic_strain, n);
+  arrays.points("history.dissipation", history.dissipation, n);
+  arrays.bonds("broken", bonds_.broken, nnz);
+  arrays.points("external_work", work_, n);
+  arrays.points("contact_force", contact_force_, contact_force_.size());
+  arrays.points("contact_energy", contact_energy_, contact_energy_.size());
+  if (energy_failure_) energy_failure_->state_arrays(arrays);
+  if (correspondence_) correspondence_->state_arrays(arrays);
+  bodies_->state_arrays(arrays);
+  integrator_->state_arrays(arrays);
+  return arrays;
+}
+
+void Simulation::restored() {
+  exchange_partner_bonds();
+  fragments_step_ = -1;
+  temperature_time_ = std::numeric_limits<double>::quiet_NaN();
+}
+
 void Simulation::exchange_partner_bonds() {
   for (std::vector<double>& array : state_.history.bond)
     if (!array.empty()) bond_halo_.exchange(array);

@@ -42,6 +42,7 @@
 #include "peridot/solvers/surface_correction.hpp"
 #include "peridot/solvers/time_integrator.hpp"
 #include "peridot/state/fields.hpp"
+#include "peridot/state/state_arrays.hpp"
 
 namespace peridot {
 
@@ -181,6 +182,16 @@ class Simulation {
   /// This rank's communication in the steps so far (benchmarks): the halo exchanges of points and partner
   /// bonds, plus the per-step failure check (one small all-reduce) in seconds.
   Halo::Traffic communication() const;
+
+  /// Everything a trajectory depends on beyond the deck and the set-up (state/state_arrays.hpp): the state,
+  /// the histories, broken bonds, the work done, the contact forces, the rigid bodies and the solver's own
+  /// state. A checkpoint (checkpoint.hpp) saves these and restores them after initialize().
+  StateArrays state_arrays();
+  /// After a checkpoint's values are in state_arrays(): refreshes the partner-bond copies and forgets what was
+  /// derived from the state before (fragment labels, the temperature's time). Collective.
+  void restored();
+  /// Local → global point index (serial: empty, the identity).
+  const std::vector<std::uint32_t>& global_index() const { return global_index_; }
 
   /// Labels state_.fragment now, with the bonds as they are (they may have broken since the step's labelling).
   /// Collective.

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "peridot/state/state_arrays.hpp"
+
 namespace peridot {
 
 class Simulation;
@@ -33,6 +35,8 @@ class TimeIntegrator {
   /// Extra history columns of this solver and their values at the last step (empty for the explicit one).
   virtual std::vector<std::string> history_columns() const { return {}; }
   virtual std::vector<double> history_values() const { return {}; }
+  /// The solver's own state between steps, for checkpoints (state/state_arrays.hpp); none by default.
+  virtual void state_arrays(StateArrays&) {}
   /// Whether the stable time step bounds its Δt (explicit: a larger one is warned about).
   virtual bool bounded_by_stable_time_step() const { return false; }
 };
