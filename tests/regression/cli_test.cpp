@@ -226,6 +226,26 @@ TEST(Cli, BlowUpExitsThreeNamingStepTimeAndPoint) {
   EXPECT_NE(result.output.find("more than 100 times the problem's size"), std::string::npos) << result.output;
 }
 
+// A time step just above the stable one (1.1 times) grows slowly: the kinetic energy passes ten times the energy
+// ever supplied long before any displacement is large. Exit 3 naming the step and the fastest point.
+TEST(Cli, KineticEnergyGrowingWithoutSourceExitsThree) {
+  const fs::path dir = scratch("energy_growth");
+  const fs::path deck = dir / "deck.yaml";
+  std::string text = read_file(source / "tests" / "regression" / "decks" / "exodus_small.yaml");
+  text = std::regex_replace(text, std::regex("  num_steps: 120"), "  num_steps: 20000\n  time_step: 2.143471e-7");
+  text = std::regex_replace(text, std::regex("    damage: \\{critical_stretch: 0.002\\}\n"), "");
+  std::ofstream(deck) << text;
+  const Result result = run("run -q " + deck.string());
+  EXPECT_EQ(result.status, 3) << result.output;
+  std::smatch step;
+  ASSERT_TRUE(std::regex_search(result.output, step,
+                                std::regex(R"(kinetic energy growing without a source at step (\d+), time [0-9.e+-]+ s: .* fastest point \d+ .* at \()")))
+      << result.output;
+  // The displacement criterion alone stops this run only at step 17051.
+  EXPECT_LT(std::stoi(step[1]), 10000);
+  EXPECT_NE(result.output.find("stable Δt"), std::string::npos);
+}
+
 // A history total that overflows while every point's values are finite (a density of 1e300 at 1e9 m/s: the
 // kinetic energy is inf) stops the run like a non-finite point value: exit 3, the column named, the row kept.
 TEST(Cli, NonFiniteHistoryTotalExitsThree) {

@@ -722,9 +722,12 @@ struct Parser {
     if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
       ctx.error(v.pos, path, fmt::format("'{}' is not a file name; give a name without a directory part: the file is "
                                          "written inside output.directory", name));
-    else if (name == "run.log" || name == "resolved_deck.yaml" || name.ends_with(".partial"))
-      ctx.error(v.pos, path, fmt::format("'{}' is a name the run writes itself (run.log, resolved_deck.yaml and "
-                                         "*.partial are taken); choose another", name));
+    else if (name == "run.log" || name == "resolved_deck.yaml" || name.ends_with(".partial") ||
+             name.ends_with(".before-restart") || name.ends_with(".tmp") ||
+             (name.starts_with("checkpoint_") && name.ends_with(".nc")))
+      ctx.error(v.pos, path, fmt::format("'{}' is a name the run writes itself (run.log, resolved_deck.yaml, "
+                                         "checkpoint_*.nc, *.partial, *.before-restart and *.tmp are taken); choose "
+                                         "another", name));
     else if (name == other)
       ctx.error(v.pos, path, fmt::format("'{}' is also the Exodus file's name; the two outputs need different names", name));
   }

@@ -1,5 +1,6 @@
 #include "peridot/solvers/velocity_verlet.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -70,6 +71,7 @@ VelocityVerlet::VelocityVerlet(Simulation& sim) : sim_(sim), damping_(sim.proble
   double horizon = 0;
   for (const MaterialParams& p : sim.model().params) horizon = std::max(horizon, p.horizon);
   runaway_ = 100 * (extent + horizon);
+  watch_energy_ = !sim.problem().temperature.has_value();
 }
 
 void VelocityVerlet::initialize() {
@@ -84,6 +86,47 @@ void VelocityVerlet::initialize() {
   }
   sim_.commit(0.0);
   sim_.agree_on_failure(failure);
+  watch_ = EnergyWatch{};
+  if (watch_energy_) {
+    const Totals totals = sim_.totals();
+    watch_.initial = totals.kinetic_energy + totals.strain_energy;
+  }
+}
+
+std::string VelocityVerlet::watch_energy() {
+  const State& state = sim_.state();
+  const Communicator& comm = sim_.communicator();
+  const Discretization& disc = sim_.discretization();
+  const std::size_t owned = sim_.num_owned();
+  const double* v = state.v.data();
+  auto kinetic = [&](std::size_t i) {
+    return 0.5 * sim_.density_of(i) * disc.volume[i] * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
+  };
+  const double energy = reproducible_sum(comm, owned, kinetic);
+  const std::vector<double>& work = sim_.external_work();
+  const double external = reproducible_sum(comm, owned, [&](std::size_t i) { return work[i]; });
+  EnergyWatch& w = watch_;
+  std::rotate(w.kinetic.begin(), w.kinetic.begin() + 1, w.kinetic.end());
+  w.kinetic.back() = energy;
+  w.most_work = std::max(w.most_work, std::abs(external));
+  if (++w.checks < static_cast<std::int64_t>(w.kinetic.size())) return {};
+  const double supplied = w.initial + w.most_work;
+  if (!(energy > 10 * supplied && energy > w.kinetic.front())) return {};
+  // The point of largest kinetic energy, on the rank that owns it.
+  std::size_t top = 0;
+  for (std::size_t i = 1; i < owned; ++i)
+    if (kinetic(i) > kinetic(top)) top = i;
+  const double mine = owned > 0 ? kinetic(top) : -1.0;
+  if (comm.first_rank_with(mine == comm.max(mine)) != comm.rank()) return {};  // agree_on_failure takes the owner's
+  const Vec3 x = disc.x.get(top);
+  return fmt::format(
+      "kinetic energy growing without a source at step {}, time {:.6g} s: {:.6g} J, up from {:.6g} J {} steps before and "
+      "{:.0f} times the energy supplied ({:.6g} J: at t = 0 and the largest external work); fastest point {} "
+      "(block '{}') at ({:.6g}, {:.6g}, {:.6g}) m, |v| = {:.6g} m/s. The solution is blowing up (a time step above the "
+      "stable one, or a density or modulus out of range?); Δt = {:.6g} s, stable Δt = {:.6g} s",
+      state.step, state.time, energy, w.kinetic.front(), energy_check_interval * static_cast<std::int64_t>(w.kinetic.size() - 1),
+      supplied > 0 ? energy / supplied : INFINITY, supplied, disc.input_id[top], disc.block_names[disc.block[top]], x.x, x.y, x.z,
+      std::sqrt(2 * kinetic(top) / (sim_.density_of(top) * disc.volume[top])), sim_.time_step(), sim_.stable_time_step());
 }
 
 void VelocityVerlet::kick(double half_dt) {
@@ -196,6 +239,11 @@ void VelocityVerlet::advance() {
              "out of range?)";
     msg << "; Δt = " << dt << " s, stable Δt = " << sim_.stable_time_step() << " s";
     failure = msg.str();
+  }
+  // Collective: every rank checks at the same steps, whatever it found above.
+  if (watch_energy_ && state.step % energy_check_interval == 0) {
+    const std::string growing = watch_energy();
+    if (failure.empty()) failure = growing;
   }
   sim_.agree_on_failure(failure);
 }

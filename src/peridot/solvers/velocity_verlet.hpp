@@ -7,6 +7,9 @@
 // to the internal and body forces in both kicks, and their work to the external work (trapezoidal, like
 // the body force). Optional mass-proportional damping (solver.damping) multiplies free velocities by
 // e^{−c Δt/2} in each kick.
+#include <array>
+#include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "peridot/deck/solver_schema.hpp"
@@ -27,8 +30,28 @@ class VelocityVerlet final : public TimeIntegrator {
   void advance() override;
   std::string describe() const override;
   bool bounded_by_stable_time_step() const override { return true; }
+  /// The kinetic-energy watch, for checkpoints.
+  void state_arrays(StateArrays& arrays) override { arrays.global("explicit.energy_watch", &watch_); }
 
  private:
+  /// Kinetic energy growing without a source stops the run (a blow-up caught while its displacements are still
+  /// small): every energy_check_interval steps, KE = Σ ½ m v² (exact sums: the same on every rank count); the
+  /// run fails when KE is more than 10 times the energy supplied (KE and strain energy at t = 0 plus the largest
+  /// |external work| so far, which counts supports, body forces and contact) and higher than 8 checks before.
+  /// Energy conservation bounds KE by the supplied energy (plus a drift of a percent or so), so only a blow-up
+  /// gets there. Off under a temperature field, whose thermal strain supplies energy this does not count.
+  static constexpr std::int64_t energy_check_interval = 32;
+  struct EnergyWatch {
+    double initial = 0;                ///< KE + strain energy at t = 0 (J)
+    double most_work = 0;              ///< the largest |external work| at a check (J)
+    std::array<double, 9> kinetic{};   ///< KE at the last checks (J), newest last
+    std::int64_t checks = 0;
+  };
+  /// The watch's check after a step: a failure message naming the point of largest KE ("" when none, or on
+  /// the ranks that do not own it). Collective.
+  std::string watch_energy();
+  EnergyWatch watch_;
+  bool watch_energy_ = true;
   void kick(double half_dt);
   Simulation& sim_;
   double damping_;  ///< c (1/s) of solver.damping
