@@ -137,7 +137,15 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   for (std::vector<double>& constants : model_.point_constants) halo_.exchange(constants);  // a partner's kernel reads them
   if (any_start_step_) {  // what a force or an energy reads of a step before the first one (thermoviscoelastic's w)
     update_temperature();
-    peridot::start_step(model_, state_.history, 0.0);
+    try {
+      peridot::start_step(model_, state_.history, 0.0);
+    } catch (const NumericalError& e) {
+      // At t = 0 the field is the deck's as written (a WLF shift undefined at the initial temperature): a deck
+      // problem, refused like one; later in the run the same check names the step (exit 3).
+      const SourcePos where = problem_.temperature ? problem_.temperature->pos : problem_.solver.pos;
+      refused = InputError(where, fmt::format("at t = 0: {}", e.what()));
+    }
+    agree_on_input_error(refused);
     exchange_partner_bonds();
   }
   try {
