@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -410,6 +411,7 @@ struct Parser {
       b.material = r["material"].text;
       if (r.given("material")) check_reference(r["material"], r.path_of("material"), "material", b.material, materials);
       if (r.given("shape")) b.shape = parse_shape(r["shape"].node, r["shape"].key_pos, r.path_of("shape"));
+      if (r.given("mesh")) b.mesh = parse_mesh(r["mesh"], r.path_of("mesh"));
       if (r.given("points_file")) b.points_file = resolve_file(r["points_file"], r.path_of("points_file"), true);
       if (r.given("block")) b.block_filter = static_cast<int>(r["block"].integer);
       if (r.given("block") && !r.present("points_file"))
@@ -419,6 +421,29 @@ struct Parser {
       p.bodies.push_back(std::move(b));
     });
     check_spacing_given();
+  }
+
+  MeshSpec parse_mesh(const Value& v, const std::string& path) {
+    MapReader r(ctx, v.node, v.key_pos, path, deck_section("bodies.<name>.mesh").keys);
+    MeshSpec m;
+    m.pos = r.given("file") ? r["file"].pos : v.key_pos;
+    if (r.given("file")) m.file = resolve_file(r["file"], r.path_of("file"), true);
+    m.block = r["block"].text;
+    m.scale = r["scale"].number;
+    if (r.given("format")) {
+      m.format = r["format"].text;
+    } else if (r.given("file")) {
+      std::string extension = fs::path(m.file).extension().string();
+      std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+      if (extension == ".e" || extension == ".exo" || extension == ".g" || extension == ".gen")
+        m.format = "exodus";
+      else
+        ctx.error(r["file"].pos, r.path_of("file"),
+                  fmt::format("cannot tell the mesh format from the extension '{}' (exodus: .e, .exo, .g, .gen); give "
+                              "format",
+                              extension));
+    }
+    return m;
   }
 
   /// The lattice spacing is needed as soon as one body is a shape filled on the lattice, or partial volumes
@@ -431,7 +456,7 @@ struct Parser {
       return;
     }
     for (const BodySpec& b : p.bodies)
-      if (b.points_file.empty()) {
+      if (b.shape) {
         ctx.error(discretization_pos, "discretization",
                   fmt::format("missing required key 'spacing' (body '{}' is filled from a shape on the lattice)", b.name));
         return;

@@ -91,13 +91,24 @@ struct MaterialSpec {
   Parameters parameters;  ///< the model's own keys
 };
 
-/// Where a body's points come from: a shape filled on the lattice, or a text point file
-/// with columns x y [z] volume [block] (block rows filtered by `block`, when given).
+/// A body's points from a mesh file (geometry/mesh.hpp): one point per element at its centroid with the
+/// element's volume, or one per SPHERE element (a node and its volume attribute).
+struct MeshSpec {
+  SourcePos pos;       ///< the `mesh` key: where a problem with the file is reported
+  std::string file;    ///< resolved relative to the deck's folder
+  std::string format;  ///< exodus (given, or guessed from the file's extension)
+  std::string block;   ///< the element block taken; empty = every block
+  double scale = 1;    ///< coordinates are multiplied by this (1e-3 for a mesh in millimetres)
+};
+
+/// Where a body's points come from: a shape filled on the lattice, a text point file with columns
+/// x y [z] volume [block] (block rows filtered by `block`, when given), or a mesh.
 struct BodySpec {
   std::string name;
   SourcePos pos;
   std::string material;  ///< name of a MaterialSpec
   std::optional<Shape> shape;
+  std::optional<MeshSpec> mesh;
   std::string points_file;         ///< resolved relative to the deck's folder
   std::optional<int> block_filter;  ///< keep only rows whose block column equals this
   double horizon = 0;               ///< δ (m), resolved from horizon or horizon_factor × spacing

@@ -174,6 +174,13 @@ void emit_bodies(YAML::Emitter& out, const Problem& p) {
     if (b.shape) {
       out << YAML::Key << "shape" << YAML::Value;
       emit_shape(out, *b.shape);
+    } else if (b.mesh) {
+      out << YAML::Key << "mesh" << YAML::Value << YAML::BeginMap;
+      out << YAML::Key << "file" << YAML::Value << b.mesh->file;
+      out << YAML::Key << "format" << YAML::Value << b.mesh->format;
+      if (!b.mesh->block.empty()) out << YAML::Key << "block" << YAML::Value << b.mesh->block;
+      out << YAML::Key << "scale" << YAML::Value << number(b.mesh->scale);
+      out << YAML::EndMap;
     } else {
       out << YAML::Key << "points_file" << YAML::Value << b.points_file;
     }

@@ -208,7 +208,7 @@ std::vector<SectionSpec> make_sections() {
   s.push_back({"discretization", "the point lattice",
                {{.key = "dimension", .type = VT::integer, .range = {1, 3}, .description = "1 (a bar), 2 or 3", .required = true},
                 {.key = "spacing", .unit = Unit::length, .range = positive,
-                 .description = "lattice spacing Δx (m); required unless every body uses points_file"},
+                 .description = "lattice spacing Δx (m); required unless every body uses points_file or mesh"},
                 horizon_factor_key(true),
                 horizon_key(true),
                 {.key = "plane", .type = VT::choice, .description = "2D idealisation", .required = true, .dimension = 2,
@@ -234,14 +234,27 @@ std::vector<SectionSpec> make_sections() {
     for (const SectionSpec& section : model.sections)
       if (std::none_of(s.begin(), s.end(), [&](const SectionSpec& known) { return known.path == section.path; }))
         s.push_back(section);
-  s.push_back({"bodies.<name>", "a body: points filling a shape on the lattice, or read from a file",
+  s.push_back({"bodies.<name>", "a body: points filling a shape on the lattice, or read from a point file or a mesh",
                {{.key = "material", .type = VT::text, .description = "name of a material", .required = true},
                 {.key = "shape", .type = VT::mapping, .description = "a shape (see shape)", .required = true, .one_of = "source"},
                 {.key = "points_file", .type = VT::text, .description = "text file, columns x y [z] volume [block]; relative to the deck",
                  .required = true, .one_of = "source"},
+                {.key = "mesh", .type = VT::mapping, .description = "a mesh file (see bodies.<name>.mesh)", .required = true,
+                 .one_of = "source"},
                 {.key = "block", .type = VT::integer, .description = "with points_file: keep only rows of this block"},
                 horizon_factor_key(false),
                 horizon_key(false)}});
+  s.push_back({"bodies.<name>.mesh",
+               "a mesh file: one point per element at its centroid with the element's volume (HEX8, TET4, WEDGE6; "
+               "QUAD4, TRI3 in 2D, times the thickness), or one per SPHERE element (its node, and its volume "
+               "attribute as Peridigm and Sierra write it)",
+               {{.key = "file", .type = VT::text, .description = "the mesh file, relative to the deck", .required = true},
+                {.key = "format", .type = VT::choice, .description = "exodus; by default from the extension (.e, .exo, .g, .gen)",
+                 .choices = {"exodus"}},
+                {.key = "block", .type = VT::text,
+                 .description = "the element block this body takes, by name (or block_<id>); every block when omitted"},
+                {.key = "scale", .default_yaml = "1", .range = positive,
+                 .description = "coordinates are multiplied by this: 1e-3 for a mesh drawn in millimetres"}}});
   s.push_back({"shape", "exactly one of these keys; in 2D box → rectangle, cylinder and sphere → disc, tube → annulus",
                {{.key = "box", .type = VT::mapping, .description = "see shape.box", .required = true, .one_of = "shape"},
                 {.key = "cylinder", .type = VT::mapping, .description = "see shape.cylinder", .required = true, .one_of = "shape"},

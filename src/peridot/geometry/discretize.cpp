@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "peridot/geometry/mesh.hpp"
+
 namespace peridot {
 
 double uniform01(std::uint64_t& state) {
@@ -177,10 +179,15 @@ Discretization discretize(const Problem& problem) {
   for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
     const BodySpec& body = problem.bodies[b];
     const std::size_t before = raw.size();
-    if (body.shape)
+    if (body.shape) {
       fill_shape(problem, static_cast<std::int32_t>(b), raw, rng);
-    else
+    } else if (body.mesh) {
+      const MeshPoints points = mesh_points(*body.mesh, problem.dimension, problem.cross_section(), body.name);
+      for (std::size_t i = 0; i < points.x.size(); ++i)
+        raw.push_back({points.x[i], points.volume[i], static_cast<std::int32_t>(b), 0});
+    } else {
       read_point_file(problem, body, static_cast<std::int32_t>(b), raw);
+    }
     if (raw.size() == before)
       errors.push_back({body.pos, "bodies." + body.name + ": the body contains no point (is it smaller than the spacing?)"});
   }

@@ -1,6 +1,6 @@
 #pragma once
 // Turns the bodies of a deck into points: shapes filled on a cell-centred lattice (optionally jittered),
-// or point files. Points are then ordered by block, and within a block along a Morton (Z-order) curve,
+// point files or meshes (geometry/mesh.hpp). Points are then ordered by block, and within a block along a Morton (Z-order) curve,
 // so that each block is one contiguous range and neighbours sit close in memory.
 #include <cstdint>
 #include <vector>

@@ -1,0 +1,61 @@
+#pragma once
+// Meshes as a source of points (bodies.<name>.mesh). A format's reader fills a Mesh: nodes and element blocks.
+// mesh_points() turns the elements of a body's block into points, each at its element's centroid with the
+// element's volume (area × thickness in 2D), both integrated over the isoparametric map by Gauss quadrature,
+// which is exact for these elements; a SPHERE element is its node with its volume attribute.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "peridot/core/error.hpp"
+#include "peridot/core/vec3.hpp"
+#include "peridot/deck/problem.hpp"
+
+namespace peridot {
+
+enum class ElementShape { sphere, tri3, quad4, tet4, wedge6, hex8 };
+
+int corner_count(ElementShape shape);  ///< nodes per element: 1, 3, 4, 4, 6, 8
+int element_dimension(ElementShape shape);  ///< 0 for a sphere, else 2 or 3
+const char* element_name(ElementShape shape);  ///< "SPHERE", "TRI3", "QUAD4", "TET4", "WEDGE6", "HEX8"
+
+struct MeshBlock {
+  std::string name;  ///< the block's name, or block_<id> when the file gives none
+  ElementShape shape = ElementShape::hex8;
+  std::vector<std::int64_t> connectivity;  ///< 0-based node indices, corner_count(shape) per element
+  std::vector<double> sphere_volume;       ///< SPHERE blocks: each element's volume
+  std::size_t size() const { return connectivity.size() / static_cast<std::size_t>(corner_count(shape)); }
+};
+
+struct Mesh {
+  std::string file;
+  int dimension = 3;        ///< of the node coordinates
+  std::vector<Vec3> nodes;  ///< unscaled, as in the file
+  std::vector<MeshBlock> blocks;
+};
+
+/// An element's centroid and measure (volume of a solid, area of a 2D element). `valid` is false when the
+/// Jacobian of the map from the reference element is not positive at some quadrature point: an element
+/// inverted (its nodes in the wrong order) or degenerate (collapsed faces or edges).
+struct ElementMeasure {
+  Vec3 centroid;
+  double measure = 0;
+  bool valid = false;
+};
+ElementMeasure measure_element(ElementShape shape, std::span<const Vec3> corners);
+
+struct MeshPoints {
+  std::vector<Vec3> x;
+  std::vector<double> volume;
+};
+
+/// The points of a body's mesh: of its block, or of every block. `cross_section` is the 2D thickness (1 in
+/// 3D). Throws InputError at spec.pos for a file that cannot be read, an unknown block, an element type
+/// that does not fit the deck's dimension, or an inverted or degenerate element (named by block and number).
+MeshPoints mesh_points(const MeshSpec& spec, int dimension, double cross_section, const std::string& body);
+
+/// Exodus II through libexodusii (geometry/mesh_exodus.cpp). Throws InputError at `pos`.
+Mesh read_exodus_mesh(const std::string& path, const SourcePos& pos);
+
+}  // namespace peridot

@@ -1,0 +1,332 @@
+// Mesh input (geometry/mesh.hpp): element centroids and volumes against closed forms, and Exodus II meshes
+// written here with libexodusii (no checked-in files) read as bodies: a HEX8 box gives the built-in box's
+// points, volumes and motion; SPHERE elements give their nodes and volume attributes; bad meshes are refused
+// at the deck's `file` entry.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <exodusII.h>
+
+#include "peridot/core/error.hpp"
+#include "peridot/deck/deck.hpp"
+#include "peridot/geometry/discretize.hpp"
+#include "peridot/geometry/mesh.hpp"
+#include "peridot/solvers/simulation.hpp"
+
+namespace fs = std::filesystem;
+using namespace peridot;
+
+namespace {
+
+std::vector<Vec3> affine(const std::vector<Vec3>& reference) {
+  // x → A x + b with det A = 2.5 (a shear, a stretch and a tilt)
+  std::vector<Vec3> out;
+  for (const Vec3& p : reference)
+    out.push_back({2 * p.x + 0.3 * p.y + 0.1 * p.z + 1, 0.2 * p.x + 1.5 * p.y - 0.4 * p.z - 2, 0.1 * p.y + 0.8 * p.z + 3});
+  return out;
+}
+constexpr double affine_det = 2 * (1.5 * 0.8 + 0.4 * 0.1) - 0.3 * (0.2 * 0.8) + 0.1 * (0.2 * 0.1);
+Vec3 affine_point(Vec3 p) { return affine({p})[0]; }
+
+const std::vector<Vec3> unit_hex = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+const std::vector<Vec3> unit_wedge = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+const std::vector<Vec3> unit_tet = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+void expect_near(Vec3 a, Vec3 b, double tolerance) {
+  EXPECT_NEAR(a.x, b.x, tolerance);
+  EXPECT_NEAR(a.y, b.y, tolerance);
+  EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+}  // namespace
+
+TEST(MeshElements, AffineSolidsHaveTheirExactVolumeAndCentroid) {
+  const ElementMeasure hex = measure_element(ElementShape::hex8, affine(unit_hex));
+  EXPECT_TRUE(hex.valid);
+  EXPECT_NEAR(hex.measure, affine_det, 1e-14);
+  expect_near(hex.centroid, affine_point({0.5, 0.5, 0.5}), 1e-14);
+  const ElementMeasure wedge = measure_element(ElementShape::wedge6, affine(unit_wedge));
+  EXPECT_TRUE(wedge.valid);
+  EXPECT_NEAR(wedge.measure, affine_det / 2, 1e-14);
+  expect_near(wedge.centroid, affine_point({1.0 / 3, 1.0 / 3, 0.5}), 1e-14);
+  const ElementMeasure tet = measure_element(ElementShape::tet4, affine(unit_tet));
+  EXPECT_TRUE(tet.valid);
+  EXPECT_NEAR(tet.measure, affine_det / 6, 1e-14);
+  expect_near(tet.centroid, affine_point({0.25, 0.25, 0.25}), 1e-14);
+}
+
+TEST(MeshElements, FrustumHexIsIntegratedExactly) {
+  // A square frustum, side a at z = 0 and b at z = h (planar faces: the trilinear map is the frustum itself):
+  // V = h (a² + ab + b²)/3, centroid height h (a² + 2ab + 3b²) / (4 (a² + ab + b²)).
+  const double a = 2, b = 0.5, h = 1.5;
+  std::vector<Vec3> corners;
+  for (int level = 0; level < 2; ++level) {
+    const double s = level == 0 ? a : b, z = level * h;
+    for (Vec3 c : {Vec3{-1, -1, 0}, Vec3{1, -1, 0}, Vec3{1, 1, 0}, Vec3{-1, 1, 0}}) corners.push_back({c.x * s / 2, c.y * s / 2, z});
+  }
+  const ElementMeasure m = measure_element(ElementShape::hex8, corners);
+  EXPECT_TRUE(m.valid);
+  EXPECT_NEAR(m.measure, h * (a * a + a * b + b * b) / 3, 1e-14);
+  expect_near(m.centroid, {0, 0, h * (a * a + 2 * a * b + 3 * b * b) / (4 * (a * a + a * b + b * b))}, 1e-14);
+}
+
+TEST(MeshElements, PlaneElementsAndTheirOrientation) {
+  const std::vector<Vec3> quad = {{0, 0, 0}, {3, 0, 0}, {2, 1, 0}, {0, 1, 0}};  // a trapezoid, area 2.5
+  const ElementMeasure q = measure_element(ElementShape::quad4, quad);
+  EXPECT_TRUE(q.valid);
+  EXPECT_NEAR(q.measure, 2.5, 1e-14);
+  const double x_bar = (2 * 1.0 + 0.5 * (2 + 1.0 / 3)) / 2.5;  // rectangle [0,2]×[0,1] plus triangle (2,0)(3,0)(2,1)
+  EXPECT_NEAR(q.centroid.x, x_bar, 1e-14);
+  EXPECT_NEAR(q.centroid.y, (2 * 0.5 + 0.5 * (1.0 / 3)) / 2.5, 1e-14);
+  const ElementMeasure t = measure_element(ElementShape::tri3, {{{0, 0, 0}, {2, 0, 0}, {0, 3, 0}}});
+  EXPECT_TRUE(t.valid);
+  EXPECT_NEAR(t.measure, 3, 1e-14);
+  const ElementMeasure clockwise = measure_element(ElementShape::quad4, {{quad[0], quad[3], quad[2], quad[1]}});
+  EXPECT_FALSE(clockwise.valid);
+}
+
+TEST(MeshElements, InvertedAndDegenerateElementsAreNotValid) {
+  std::vector<Vec3> flipped = unit_hex;  // top and bottom faces swapped: inside out
+  std::rotate(flipped.begin(), flipped.begin() + 4, flipped.end());
+  EXPECT_FALSE(measure_element(ElementShape::hex8, flipped).valid);
+  std::vector<Vec3> collapsed = unit_hex;  // the top face pulled down onto the bottom one
+  for (int i = 4; i < 8; ++i) collapsed[i].z = 0;
+  EXPECT_FALSE(measure_element(ElementShape::hex8, collapsed).valid);
+  EXPECT_FALSE(measure_element(ElementShape::tet4, {{unit_tet[0], unit_tet[2], unit_tet[1], unit_tet[3]}}).valid);
+  std::vector<Vec3> bow_tie = unit_hex;  // two top corners crossed: the Jacobian changes sign inside
+  std::swap(bow_tie[6], bow_tie[7]);
+  EXPECT_FALSE(measure_element(ElementShape::hex8, bow_tie).valid);
+}
+
+namespace {
+
+struct HexBox {
+  Vec3 lo;
+  double h;     ///< element edge
+  int n[3];     ///< elements per direction
+  int split_x;  ///< elements with i < split_x go to block "left", the others to "right" (0: one block "box")
+};
+
+void check(int status) { ASSERT_GE(status, 0) << "libexodusii status " << status; }
+
+/// A structured HEX8 mesh of a box in one or two named blocks. `topology` and `invert` make bad meshes.
+void write_hex_box(const std::string& path, const HexBox& box, const char* topology = "HEX8", int invert = -1) {
+  int word = sizeof(double), io_word = sizeof(double);
+  const int exoid = ex_create(path.c_str(), EX_CLOBBER, &word, &io_word);
+  ASSERT_GE(exoid, 0);
+  const int nx = box.n[0] + 1, ny = box.n[1] + 1, nz = box.n[2] + 1;
+  const int nodes = nx * ny * nz;
+  const int blocks = box.split_x > 0 ? 2 : 1;
+  check(ex_put_init(exoid, "hex box", 3, nodes, box.n[0] * box.n[1] * box.n[2], blocks, 0, 0));
+  std::vector<double> x(nodes), y(nodes), z(nodes);
+  auto node = [&](int i, int j, int k) { return i + nx * (j + ny * k); };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        x[node(i, j, k)] = box.lo.x + i * box.h;
+        y[node(i, j, k)] = box.lo.y + j * box.h;
+        z[node(i, j, k)] = box.lo.z + k * box.h;
+      }
+  check(ex_put_coord(exoid, x.data(), y.data(), z.data()));
+  std::vector<std::string> names = blocks == 2 ? std::vector<std::string>{"left", "right"} : std::vector<std::string>{"box"};
+  for (int b = 0; b < blocks; ++b) {
+    std::vector<int> conn;
+    int count = 0;
+    for (int k = 0; k < box.n[2]; ++k)
+      for (int j = 0; j < box.n[1]; ++j)
+        for (int i = 0; i < box.n[0]; ++i) {
+          if (blocks == 2 && (i < box.split_x) != (b == 0)) continue;
+          std::array<int, 8> c = {node(i, j, k),         node(i + 1, j, k),         node(i + 1, j + 1, k),
+                                  node(i, j + 1, k),     node(i, j, k + 1),         node(i + 1, j, k + 1),
+                                  node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
+          if (count == invert) std::rotate(c.begin(), c.begin() + 4, c.end());
+          for (int id : c) conn.push_back(id + 1);
+          ++count;
+        }
+    check(ex_put_block(exoid, EX_ELEM_BLOCK, b + 1, topology, count, 8, 0, 0, 0));
+    check(ex_put_conn(exoid, EX_ELEM_BLOCK, b + 1, conn.data(), nullptr, nullptr));
+  }
+  std::vector<char*> pointers;
+  for (std::string& name : names) pointers.push_back(name.data());
+  check(ex_put_names(exoid, EX_ELEM_BLOCK, pointers.data()));
+  check(ex_close(exoid));
+}
+
+/// SPHERE elements at given points with attributes (radius, volume), unnamed as Sierra writes them.
+void write_spheres(const std::string& path, const std::vector<Vec3>& points, const std::vector<double>& volumes) {
+  int word = sizeof(double), io_word = sizeof(double);
+  const int exoid = ex_create(path.c_str(), EX_CLOBBER, &word, &io_word);
+  ASSERT_GE(exoid, 0);
+  const int n = static_cast<int>(points.size());
+  check(ex_put_init(exoid, "spheres", 3, n, n, 1, 0, 0));
+  std::vector<double> x, y, z, attributes;
+  std::vector<int> conn;
+  for (int i = 0; i < n; ++i) {
+    x.push_back(points[i].x), y.push_back(points[i].y), z.push_back(points[i].z);
+    conn.push_back(i + 1);
+    attributes.push_back(std::cbrt(volumes[i]));  // a radius of some sort: not what is read
+    attributes.push_back(volumes[i]);
+  }
+  check(ex_put_coord(exoid, x.data(), y.data(), z.data()));
+  check(ex_put_block(exoid, EX_ELEM_BLOCK, 7, "SPHERE", n, 1, 0, 0, 2));
+  check(ex_put_conn(exoid, EX_ELEM_BLOCK, 7, conn.data(), nullptr, nullptr));
+  check(ex_put_attr(exoid, EX_ELEM_BLOCK, 7, attributes.data()));
+  check(ex_close(exoid));
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path folder = fs::temp_directory_path() / "peridot_mesh_test";
+  fs::create_directories(folder);
+  return folder / name;
+}
+
+std::string deck(const std::string& bodies, const std::string& extra = "") {
+  return "discretization: {dimension: 3, spacing: 1 mm, horizon_factor: 3.015}\n"
+         "materials:\n"
+         "  aluminium: {model: lps, density: 2700, youngs_modulus: 70 GPa, poisson_ratio: 0.3}\n"
+         "  steel: {model: pmb, density: 7800, youngs_modulus: 200 GPa}\n"
+         "bodies:\n" +
+         bodies +
+         "initial_conditions:\n"
+         "  - {velocity: {x: \"10 * (x - 0.004) / 0.004\", z: \"3 * sin(1000 * y)\"}}\n"
+         "solver: {num_steps: 30}\n" +
+         extra + "output: {progress: false}\n";
+}
+
+std::string mesh_deck(const fs::path& mesh, const std::string& extra_mesh_keys = "") {
+  return deck("  left: {material: aluminium, mesh: {file: " + mesh.filename().string() + ", block: left" + extra_mesh_keys +
+              "}}\n  right: {material: steel, mesh: {file: " + mesh.filename().string() + ", block: right" +
+              extra_mesh_keys + "}}\n");
+}
+
+const std::string built_in_bodies =
+    "  left: {material: aluminium, shape: {box: {min: [0, 0, 0], max: [0.005, 0.004, 0.003]}}}\n"
+    "  right: {material: steel, shape: {box: {min: [0.005, 0, 0], max: [0.008, 0.004, 0.003]}}}\n";
+
+/// Each point's block, position, volume and final displacement, in an order that does not depend on the input.
+std::vector<std::array<double, 8>> run(const Problem& problem) {
+  Simulation sim(problem);
+  sim.initialize();
+  while (sim.state().step < sim.total_steps()) sim.step();
+  const Discretization& d = sim.discretization();
+  std::vector<std::array<double, 8>> rows;
+  for (std::size_t i = 0; i < d.num_points(); ++i)
+    rows.push_back({static_cast<double>(d.block[i]), d.x(i, 0), d.x(i, 1), d.x(i, 2), d.volume[i], sim.state().u(i, 0),
+                    sim.state().u(i, 1), sim.state().u(i, 2)});
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
+    for (int k = 0; k < 4; ++k)
+      if (std::abs(a[k] - b[k]) > 1e-9) return a[k] < b[k];
+    return false;
+  });
+  return rows;
+}
+
+}  // namespace
+
+TEST(ExodusMesh, HexBoxGivesTheBuiltInBoxsPointsAndMotion) {
+  const fs::path mesh = scratch("box_hex.e");
+  write_hex_box(mesh.string(), {{0, 0, 0}, 1, {8, 4, 3}, 5});  // in millimetres: scale 1e-3
+  const Problem from_mesh = parse_deck(mesh_deck(mesh, ", scale: 1e-3"), "mesh.yaml", mesh.parent_path().string());
+  const Problem built_in = parse_deck(deck(built_in_bodies), "box.yaml", ".");
+  const auto a = run(from_mesh), b = run(built_in);
+  ASSERT_EQ(a.size(), 96u);
+  ASSERT_EQ(a.size(), b.size());
+  double volume_a = 0, volume_b = 0, largest_u = 0, largest_difference = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i][0], b[i][0]) << i;
+    for (int k = 1; k <= 3; ++k) EXPECT_NEAR(a[i][k], b[i][k], 1e-17) << i;  // round-off of 8 mm
+    EXPECT_NEAR(a[i][4], b[i][4], 1e-23) << i;  // of 1 mm³
+    volume_a += a[i][4], volume_b += b[i][4];
+    for (int k = 5; k < 8; ++k) {
+      largest_u = std::max(largest_u, std::abs(b[i][k]));
+      largest_difference = std::max(largest_difference, std::abs(a[i][k] - b[i][k]));
+    }
+  }
+  EXPECT_NEAR(volume_a, 96e-9, 1e-21);
+  EXPECT_NEAR(volume_a, volume_b, 1e-21);
+  EXPECT_GT(largest_u, 1e-7);  // the run moved
+  EXPECT_LT(largest_difference, 1e-9 * largest_u);  // the same motion to round-off
+}
+
+TEST(ExodusMesh, EveryBlockWhenNoneIsNamedAndTheResolvedDeckKeepsTheMesh) {
+  const fs::path mesh = scratch("one_block.e");
+  write_hex_box(mesh.string(), {{0, 0, 0}, 0.001, {4, 3, 2}, 0});
+  const Problem p = parse_deck(deck("  box: {material: steel, mesh: {file: one_block.e}}\n"), "mesh.yaml",
+                               mesh.parent_path().string());
+  ASSERT_TRUE(p.bodies[0].mesh);
+  EXPECT_EQ(p.bodies[0].mesh->format, "exodus");
+  EXPECT_EQ(p.bodies[0].mesh->file, mesh.string());
+  const Discretization d = discretize(p);
+  EXPECT_EQ(d.num_points(), 24u);
+  const std::string resolved = resolved_deck_yaml(p);
+  EXPECT_NE(resolved.find("mesh:"), std::string::npos) << resolved;
+  const Problem again = parse_deck(resolved, "resolved.yaml", "/");
+  EXPECT_EQ(discretize(again).num_points(), 24u);
+}
+
+TEST(ExodusMesh, SphereElementsAreTheirNodesWithTheirVolumes) {
+  const fs::path mesh = scratch("spheres.e");
+  const std::vector<Vec3> points = {{0, 0, 0}, {1e-3, 0, 0}, {0, 1e-3, 0}, {0, 0, 1.2e-3}};
+  const std::vector<double> volumes = {1e-9, 2e-9, 0.5e-9, 1.5e-9};
+  write_spheres(mesh.string(), points, volumes);
+  const Problem p = parse_deck(deck("  cloud: {material: steel, mesh: {file: spheres.e}}\n"), "mesh.yaml",
+                               mesh.parent_path().string());
+  const Discretization d = discretize(p);
+  ASSERT_EQ(d.num_points(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const std::size_t input = d.input_id[i];
+    EXPECT_EQ(d.x.get(i).x, points[input].x);
+    EXPECT_EQ(d.x.get(i).z, points[input].z);
+    EXPECT_EQ(d.volume[i], volumes[input]);
+  }
+}
+
+namespace {
+
+void expect_refused(const std::string& text, const fs::path& folder, const std::string& message, int line = 6) {
+  try {
+    const Problem p = parse_deck(text, "mesh.yaml", folder.string());
+    discretize(p);
+    ADD_FAILURE() << "accepted; expected: " << message;
+  } catch (const InputError& e) {
+    const auto& all = e.diagnostics();
+    const auto d = std::find_if(all.begin(), all.end(), [&](const Diagnostic& d) { return d.message.find(message) != std::string::npos; });
+    ASSERT_NE(d, all.end()) << e.what();
+    EXPECT_EQ(d->pos.file, "mesh.yaml");
+    EXPECT_EQ(d->pos.line, line) << d->str();
+  }
+}
+
+}  // namespace
+
+TEST(ExodusMesh, BadMeshesAreRefusedAtTheDeckEntry) {
+  const fs::path mesh = scratch("box_hex.e");
+  write_hex_box(mesh.string(), {{0, 0, 0}, 1, {8, 4, 3}, 5});
+  const fs::path folder = mesh.parent_path();
+  expect_refused(deck("  left: {material: steel, mesh: {file: box_hex.e, block: middle}}\n"), folder,
+                 "no element block 'middle'; the file has left, right");
+  const fs::path inverted = scratch("inverted.e");
+  write_hex_box(inverted.string(), {{0, 0, 0}, 1, {3, 3, 3}, 0}, "HEX8", 13);
+  expect_refused(deck("  box: {material: steel, mesh: {file: inverted.e}}\n"), folder,
+                 "element 14 of block 'box' (HEX8) is inverted or degenerate");
+  const fs::path shell = scratch("shell.e");
+  write_hex_box(shell.string(), {{0, 0, 0}, 1, {2, 2, 2}, 0}, "HEX20");
+  expect_refused(deck("  box: {material: steel, mesh: {file: shell.e}}\n"), folder,
+                 "has elements of type HEX20 with 8 nodes; supported are");
+  expect_refused(deck("  box: {material: steel, mesh: {file: absent.e}}\n"), folder, "file not found");
+  const fs::path text = scratch("not_a_mesh.e");
+  { std::ofstream(text) << "hello\n"; }
+  expect_refused(deck("  box: {material: steel, mesh: {file: not_a_mesh.e}}\n"), folder,
+                 "cannot read '" + text.string() + "' as an Exodus II file");
+  { std::ofstream(scratch("box.stl")) << "solid box\n"; }
+  expect_refused(deck("  box: {material: steel, mesh: {file: box.stl}}\n"), folder,
+                 "cannot tell the mesh format from the extension '.stl'");
+  expect_refused(deck("  box: {material: steel, mesh: {file: box_hex.e, scale: 0}}\n"), folder, "scale");
+}
