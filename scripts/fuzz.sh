@@ -13,8 +13,9 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYP
 cmake --build build-fuzz --target deck_fuzzer
 corpus=build-fuzz/corpus
 mkdir -p "$corpus" build-fuzz/findings
-# The seeds, named after their paths (several folders have a deck.yaml).
-for deck in examples/*/deck*.yaml tests/data/decks/*.yaml tests/regression/decks/*.yaml; do
+# The seeds, named after their paths (several folders have a deck.yaml). fuzz/regressions holds the inputs that
+# once failed (each fixed): every run starts by running them again under the sanitizers.
+for deck in examples/*/deck*.yaml tests/data/decks/*.yaml tests/regression/decks/*.yaml fuzz/regressions/*.yaml; do
   cp "$deck" "$corpus/seed_${deck//\//_}"
 done
 export OMP_NUM_THREADS=1

@@ -829,6 +829,14 @@ TEST(Deck, RigidBodiesAndContact) {
   expect_error(both, position_of(both, "displacement: {z: \"t\"}"), "give only one of 'mass' and 'displacement'");
   std::string same = replaced(deck_contact, "name: anvil", "name: floor");
   expect_error(same, position_of(same, "{name: floor, box"), "two rigid walls or bodies are named 'floor'");
+  // Many bodies, the last named like the first (the names are compared after the list has grown several times:
+  // the fuzzer found them compared through views into the list's old storage).
+  std::string planes;
+  for (int k = 0; k < 12; ++k) planes += fmt::format("  - {{name: plane_with_a_long_name_{}, plane: {{point: [0, 0, -{}], normal: [0, 0, 1]}}}}\n", k, k + 2);
+  planes += "  - {name: plane_with_a_long_name_0, plane: {point: [0, 0, -20], normal: [0, 0, 1]}}\n";
+  std::string many = replaced(deck_contact, "  - {name: anvil, box:", planes + "  - {name: anvil, box:");
+  expect_error(many, position_of(many, "{name: plane_with_a_long_name_0, plane: {point: [0, 0, -20]"),
+               "two rigid walls or bodies are named 'plane_with_a_long_name_0'");
   std::string shapes = replaced(deck_contact, "  - {name: anvil, box:", "  - {name: anvil, sphere: {center: [0, 0, 0], radius: 1}, box:");
   expect_error(shapes, position_of(shapes, "box: {min: [-1"), "give only one of 'sphere' and 'box'");
   std::string unknown = replaced(deck_contact, "[plate, chip]", "[plate, chips]");

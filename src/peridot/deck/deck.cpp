@@ -648,7 +648,7 @@ struct Parser {
   }
 
   void parse_rigid_bodies(const Value& v) {
-    std::vector<std::string_view> names;
+    std::vector<std::string> names;  // copies: a view into p.rigid_bodies dangles when it grows
     for (const RigidWallSpec& w : p.rigid_walls) names.push_back(w.name);
     for_each_item(v, "rigid_bodies", [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
       MapReader r(ctx, node, pos, path, deck_section("rigid_bodies[i]").keys);
