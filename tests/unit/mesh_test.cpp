@@ -9,7 +9,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <exodusII.h>
@@ -114,49 +116,146 @@ struct HexBox {
   int split_x;  ///< elements with i < split_x go to block "left", the others to "right" (0: one block "box")
 };
 
-void check(int status) { ASSERT_GE(status, 0) << "libexodusii status " << status; }
+/// The box's nodes and each block's elements (0-based corner nodes in Exodus order), one block or two.
+struct BoxMesh {
+  std::vector<Vec3> nodes;
+  std::vector<std::string> names;
+  std::vector<std::vector<std::array<int, 8>>> blocks;
+};
 
-/// A structured HEX8 mesh of a box in one or two named blocks. `topology` and `invert` make bad meshes.
-void write_hex_box(const std::string& path, const HexBox& box, const char* topology = "HEX8", int invert = -1) {
-  int word = sizeof(double), io_word = sizeof(double);
-  const int exoid = ex_create(path.c_str(), EX_CLOBBER, &word, &io_word);
-  ASSERT_GE(exoid, 0);
+BoxMesh box_mesh(const HexBox& box, int invert = -1) {
+  BoxMesh m;
   const int nx = box.n[0] + 1, ny = box.n[1] + 1, nz = box.n[2] + 1;
-  const int nodes = nx * ny * nz;
-  const int blocks = box.split_x > 0 ? 2 : 1;
-  check(ex_put_init(exoid, "hex box", 3, nodes, box.n[0] * box.n[1] * box.n[2], blocks, 0, 0));
-  std::vector<double> x(nodes), y(nodes), z(nodes);
   auto node = [&](int i, int j, int k) { return i + nx * (j + ny * k); };
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        x[node(i, j, k)] = box.lo.x + i * box.h;
-        y[node(i, j, k)] = box.lo.y + j * box.h;
-        z[node(i, j, k)] = box.lo.z + k * box.h;
+      for (int i = 0; i < nx; ++i) m.nodes.push_back({box.lo.x + i * box.h, box.lo.y + j * box.h, box.lo.z + k * box.h});
+  m.names = box.split_x > 0 ? std::vector<std::string>{"left", "right"} : std::vector<std::string>{"box"};
+  m.blocks.resize(m.names.size());
+  for (int k = 0; k < box.n[2]; ++k)
+    for (int j = 0; j < box.n[1]; ++j)
+      for (int i = 0; i < box.n[0]; ++i) {
+        std::array<int, 8> c = {node(i, j, k),     node(i + 1, j, k),     node(i + 1, j + 1, k),     node(i, j + 1, k),
+                                node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
+        auto& block = m.blocks[box.split_x > 0 && i >= box.split_x ? 1 : 0];
+        if (static_cast<int>(block.size()) == invert) std::rotate(c.begin(), c.begin() + 4, c.end());
+        block.push_back(c);
       }
+  return m;
+}
+
+void check(int status) { ASSERT_GE(status, 0) << "libexodusii status " << status; }
+
+/// The box as Exodus II, with libexodusii. `topology` makes bad meshes.
+void write_exodus(const std::string& path, const BoxMesh& m, const char* topology = "HEX8") {
+  int word = sizeof(double), io_word = sizeof(double);
+  const int exoid = ex_create(path.c_str(), EX_CLOBBER, &word, &io_word);
+  ASSERT_GE(exoid, 0);
+  const int nodes = static_cast<int>(m.nodes.size());
+  int elements = 0;
+  for (const auto& block : m.blocks) elements += static_cast<int>(block.size());
+  check(ex_put_init(exoid, "hex box", 3, nodes, elements, static_cast<int>(m.blocks.size()), 0, 0));
+  std::vector<double> x, y, z;
+  for (const Vec3& p : m.nodes) x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
   check(ex_put_coord(exoid, x.data(), y.data(), z.data()));
-  std::vector<std::string> names = blocks == 2 ? std::vector<std::string>{"left", "right"} : std::vector<std::string>{"box"};
-  for (int b = 0; b < blocks; ++b) {
+  std::vector<std::string> names = m.names;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
     std::vector<int> conn;
-    int count = 0;
-    for (int k = 0; k < box.n[2]; ++k)
-      for (int j = 0; j < box.n[1]; ++j)
-        for (int i = 0; i < box.n[0]; ++i) {
-          if (blocks == 2 && (i < box.split_x) != (b == 0)) continue;
-          std::array<int, 8> c = {node(i, j, k),         node(i + 1, j, k),         node(i + 1, j + 1, k),
-                                  node(i, j + 1, k),     node(i, j, k + 1),         node(i + 1, j, k + 1),
-                                  node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
-          if (count == invert) std::rotate(c.begin(), c.begin() + 4, c.end());
-          for (int id : c) conn.push_back(id + 1);
-          ++count;
-        }
-    check(ex_put_block(exoid, EX_ELEM_BLOCK, b + 1, topology, count, 8, 0, 0, 0));
-    check(ex_put_conn(exoid, EX_ELEM_BLOCK, b + 1, conn.data(), nullptr, nullptr));
+    for (const auto& element : m.blocks[b])
+      for (int id : element) conn.push_back(id + 1);
+    check(ex_put_block(exoid, EX_ELEM_BLOCK, static_cast<int>(b) + 1, topology, static_cast<int>(m.blocks[b].size()), 8, 0, 0, 0));
+    check(ex_put_conn(exoid, EX_ELEM_BLOCK, static_cast<int>(b) + 1, conn.data(), nullptr, nullptr));
   }
   std::vector<char*> pointers;
   for (std::string& name : names) pointers.push_back(name.data());
   check(ex_put_names(exoid, EX_ELEM_BLOCK, pointers.data()));
   check(ex_close(exoid));
+}
+
+void write_hex_box(const std::string& path, const HexBox& box, const char* topology = "HEX8", int invert = -1) {
+  write_exodus(path, box_mesh(box, invert), topology);
+}
+
+/// The box as an Abaqus input file: nodes and elements numbered from 1, one *ELEMENT section per block
+/// (elset = its name in capitals), and an element set of everything.
+void write_abaqus(const std::string& path, const BoxMesh& m) {
+  std::ofstream out(path);
+  out << "*Heading\n** a box of C3D8R elements, written by mesh_test\n*Node\n";
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    out << i + 1 << ", " << m.nodes[i].x << ", " << m.nodes[i].y << ", " << m.nodes[i].z << "\n";
+  int number = 0;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    std::string name = m.names[b];
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
+    out << "*Element, type=C3D8R, elset=" << name << "\n";
+    for (const auto& element : m.blocks[b]) {
+      out << ++number;
+      for (int id : element) out << ", " << id + 1;
+      out << "\n";
+    }
+  }
+  out << "*Elset, elset=ALL, generate\n 1, " << number << ", 1\n*End Step\n";
+}
+
+/// The box as a Gmsh 4.1 file, ASCII or binary: a volume entity and a physical group per block, all nodes in
+/// one block, and two quadrangles on a boundary surface (which the reader passes over).
+void write_gmsh(const std::string& path, const BoxMesh& m, bool binary) {
+  std::ofstream out(path, std::ios::binary);
+  auto size = [&](std::uint64_t v) {
+    if (binary) out.write(reinterpret_cast<const char*>(&v), sizeof v);
+    else out << v << ' ';
+  };
+  auto integer = [&](std::int32_t v) {
+    if (binary) out.write(reinterpret_cast<const char*>(&v), sizeof v);
+    else out << v << ' ';
+  };
+  auto number = [&](double v) {
+    if (binary) out.write(reinterpret_cast<const char*>(&v), sizeof v);
+    else out << v << ' ';
+  };
+  auto end_line = [&]() {
+    if (!binary) out << "\n";
+  };
+  out << "$MeshFormat\n4.1 " << (binary ? 1 : 0) << " 8\n";
+  if (binary) integer(1);
+  out << "\n$EndMeshFormat\n$PhysicalNames\n" << m.blocks.size() << "\n";
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) out << "3 " << b + 1 << " \"" << m.names[b] << "\"\n";
+  out << "$EndPhysicalNames\n$Entities\n";
+  size(0), size(0), size(1), size(m.blocks.size()), end_line();
+  integer(1);  // the boundary surface
+  for (int i = 0; i < 6; ++i) number(0);
+  size(0), size(0), end_line();
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    integer(static_cast<std::int32_t>(b) + 1);
+    for (int i = 0; i < 6; ++i) number(0);
+    size(1), integer(static_cast<std::int32_t>(b) + 1), size(0), end_line();
+  }
+  out << (binary ? "\n" : "") << "$EndEntities\n$Nodes\n";
+  const std::uint64_t n = m.nodes.size();
+  size(1), size(n), size(1), size(n), end_line();
+  integer(3), integer(1), integer(0), size(n), end_line();
+  for (std::uint64_t i = 0; i < n; ++i) size(i + 1), end_line();
+  for (const Vec3& p : m.nodes) number(p.x), number(p.y), number(p.z), end_line();
+  out << (binary ? "\n" : "") << "$EndNodes\n$Elements\n";
+  std::uint64_t elements = 2;
+  for (const auto& block : m.blocks) elements += block.size();
+  size(m.blocks.size() + 1), size(elements), size(1), size(elements), end_line();
+  std::uint64_t tag = 0;
+  integer(2), integer(1), integer(3), size(2), end_line();  // two quadrangles of the bottom face
+  for (int q = 0; q < 2; ++q) {
+    size(++tag);
+    for (int i = 0; i < 4; ++i) size(static_cast<std::uint64_t>(m.blocks[0][q][i]) + 1);
+    end_line();
+  }
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    integer(3), integer(static_cast<std::int32_t>(b) + 1), integer(5), size(m.blocks[b].size()), end_line();
+    for (const auto& element : m.blocks[b]) {
+      size(++tag);
+      for (int id : element) size(static_cast<std::uint64_t>(id) + 1);
+      end_line();
+    }
+  }
+  out << (binary ? "\n" : "") << "$EndElements\n";
 }
 
 /// SPHERE elements at given points with attributes (radius, volume), unnamed as Sierra writes them.
@@ -230,29 +329,51 @@ std::vector<std::array<double, 8>> run(const Problem& problem) {
 
 }  // namespace
 
-TEST(ExodusMesh, HexBoxGivesTheBuiltInBoxsPointsAndMotion) {
-  const fs::path mesh = scratch("box_hex.e");
-  write_hex_box(mesh.string(), {{0, 0, 0}, 1, {8, 4, 3}, 5});  // in millimetres: scale 1e-3
-  const Problem from_mesh = parse_deck(mesh_deck(mesh, ", scale: 1e-3"), "mesh.yaml", mesh.parent_path().string());
-  const Problem built_in = parse_deck(deck(built_in_bodies), "box.yaml", ".");
-  const auto a = run(from_mesh), b = run(built_in);
-  ASSERT_EQ(a.size(), 96u);
-  ASSERT_EQ(a.size(), b.size());
-  double volume_a = 0, volume_b = 0, largest_u = 0, largest_difference = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i][0], b[i][0]) << i;
-    for (int k = 1; k <= 3; ++k) EXPECT_NEAR(a[i][k], b[i][k], 1e-17) << i;  // round-off of 8 mm
-    EXPECT_NEAR(a[i][4], b[i][4], 1e-23) << i;  // of 1 mm³
-    volume_a += a[i][4], volume_b += b[i][4];
-    for (int k = 5; k < 8; ++k) {
-      largest_u = std::max(largest_u, std::abs(b[i][k]));
-      largest_difference = std::max(largest_difference, std::abs(a[i][k] - b[i][k]));
+// The must-show of mesh input: the same box as Exodus HEX8, Gmsh (ASCII and binary) and Abaqus, each in
+// millimetres, gives the built-in box's points, volumes and motion.
+TEST(MeshInput, EveryFormatGivesTheBuiltInBoxsPointsVolumesAndMotion) {
+  const BoxMesh box = box_mesh({{0, 0, 0}, 1, {8, 4, 3}, 5});
+  write_exodus(scratch("box.e").string(), box);
+  write_gmsh(scratch("box_ascii.msh").string(), box, false);
+  write_gmsh(scratch("box_binary.msh").string(), box, true);
+  write_abaqus(scratch("box.inp").string(), box);
+  const auto b = run(parse_deck(deck(built_in_bodies), "box.yaml", "."));
+  ASSERT_EQ(b.size(), 96u);
+  for (const char* file : {"box.e", "box_ascii.msh", "box_binary.msh", "box.inp"}) {
+    SCOPED_TRACE(file);
+    const auto a = run(parse_deck(mesh_deck(scratch(file), ", scale: 1e-3"), "mesh.yaml", scratch(file).parent_path().string()));
+    ASSERT_EQ(a.size(), b.size());
+    double volume_a = 0, volume_b = 0, largest_u = 0, largest_difference = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i][0], b[i][0]) << i;
+      for (int k = 1; k <= 3; ++k) EXPECT_NEAR(a[i][k], b[i][k], 1e-17) << i;  // round-off of 8 mm
+      EXPECT_NEAR(a[i][4], b[i][4], 1e-23) << i;                              // of 1 mm³
+      volume_a += a[i][4], volume_b += b[i][4];
+      for (int k = 5; k < 8; ++k) {
+        largest_u = std::max(largest_u, std::abs(b[i][k]));
+        largest_difference = std::max(largest_difference, std::abs(a[i][k] - b[i][k]));
+      }
     }
+    EXPECT_NEAR(volume_a, 96e-9, 1e-21);
+    EXPECT_NEAR(volume_a, volume_b, 1e-21);
+    EXPECT_GT(largest_u, 1e-7);                       // the run moved
+    EXPECT_LT(largest_difference, 1e-9 * largest_u);  // the same motion to round-off
   }
-  EXPECT_NEAR(volume_a, 96e-9, 1e-21);
-  EXPECT_NEAR(volume_a, volume_b, 1e-21);
-  EXPECT_GT(largest_u, 1e-7);  // the run moved
-  EXPECT_LT(largest_difference, 1e-9 * largest_u);  // the same motion to round-off
+}
+
+TEST(MeshInput, ElementSetsAndPhysicalGroupsSelectLikeBlocks) {
+  const BoxMesh box = box_mesh({{0, 0, 0}, 1, {8, 4, 3}, 5});
+  write_gmsh(scratch("sets.msh").string(), box, false);
+  write_abaqus(scratch("sets.inp").string(), box);
+  const std::string folder = scratch("sets.inp").parent_path().string();
+  for (const auto& [file, block, count] : std::vector<std::tuple<std::string, std::string, std::size_t>>{
+           {"sets.msh", "left", 60}, {"sets.msh", "right", 36}, {"sets.msh", "entity_2", 36}, {"sets.msh", "", 96},
+           {"sets.inp", "left", 60}, {"sets.inp", "RIGHT", 36}, {"sets.inp", "all", 96}, {"sets.inp", "", 96}}) {
+    SCOPED_TRACE(file + " " + block);
+    const std::string keys = block.empty() ? "" : ", block: " + block;
+    const Problem p = parse_deck(deck("  box: {material: steel, mesh: {file: " + file + keys + "}}\n"), "mesh.yaml", folder);
+    EXPECT_EQ(discretize(p).num_points(), count);
+  }
 }
 
 TEST(ExodusMesh, EveryBlockWhenNoneIsNamedAndTheResolvedDeckKeepsTheMesh) {
@@ -311,7 +432,7 @@ TEST(ExodusMesh, BadMeshesAreRefusedAtTheDeckEntry) {
   write_hex_box(mesh.string(), {{0, 0, 0}, 1, {8, 4, 3}, 5});
   const fs::path folder = mesh.parent_path();
   expect_refused(deck("  left: {material: steel, mesh: {file: box_hex.e, block: middle}}\n"), folder,
-                 "no element block 'middle'; the file has left, right");
+                 "no element block or set 'middle'; the file has left, right");
   const fs::path inverted = scratch("inverted.e");
   write_hex_box(inverted.string(), {{0, 0, 0}, 1, {3, 3, 3}, 0}, "HEX8", 13);
   expect_refused(deck("  box: {material: steel, mesh: {file: inverted.e}}\n"), folder,
@@ -329,4 +450,62 @@ TEST(ExodusMesh, BadMeshesAreRefusedAtTheDeckEntry) {
   expect_refused(deck("  box: {material: steel, mesh: {file: box.stl}}\n"), folder,
                  "cannot tell the mesh format from the extension '.stl'");
   expect_refused(deck("  box: {material: steel, mesh: {file: box_hex.e, scale: 0}}\n"), folder, "scale");
+}
+
+namespace {
+
+/// The InputError of reading a text mesh: at the mesh file's own line.
+void expect_file_error(const std::string& file, const std::string& text, int line, const std::string& message) {
+  const fs::path path = scratch(file);
+  { std::ofstream(path, std::ios::binary) << text; }
+  try {
+    const Problem p = parse_deck(deck("  box: {material: steel, mesh: {file: " + file + "}}\n"), "mesh.yaml",
+                                 path.parent_path().string());
+    discretize(p);
+    ADD_FAILURE() << "accepted; expected: " << message;
+  } catch (const InputError& e) {
+    const Diagnostic& d = e.diagnostics().at(0);
+    EXPECT_EQ(d.pos.file, path.string()) << d.str();
+    EXPECT_EQ(d.pos.line, line) << d.str();
+    EXPECT_NE(d.message.find(message), std::string::npos) << d.str();
+  }
+}
+
+}  // namespace
+
+TEST(MeshInput, BadTextMeshesAreRefusedAtTheirLine) {
+  const std::string nodes = "*Node\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n";
+  expect_file_error("quadratic.inp", nodes + "*Element, type=C3D10, elset=E\n1, 1, 2, 3, 4\n", 6,
+                    "element type 'C3D10' is not supported");
+  expect_file_error("missing_node.inp", nodes + "*Element, type=C3D4, elset=E\n1, 1, 2, 3, 9\n", 7,
+                    "block 'E' names node 9, which no *NODE gives");
+  expect_file_error("letters.inp", "*Node\n1, 0, zero, 0\n", 2, "'zero' is not a number");
+  expect_file_error("instance.inp", nodes + "*Instance, name=I, part=P\n 5., 0., 0.\n", 7, "an *INSTANCE moved or turned");
+  expect_file_error("old.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", 2, "Gmsh format 2.2; format 4.1 is read");
+  expect_file_error("quadratic.msh",
+                    "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                    "$EndNodes\n$Elements\n1 1 1 1\n3 1 11 1\n1 1 2 3 4 1 2 3 4 1 2\n$EndElements\n",
+                    17, "10-node tetrahedron elements (type 11) are not supported");
+  expect_file_error("dangling.msh",
+                    "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                    "$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 5\n$EndElements\n",
+                    17, "names node 5, which $Nodes does not give");
+}
+
+TEST(MeshInput, TruncatedBinaryGmshIsRefused) {
+  const BoxMesh box = box_mesh({{0, 0, 0}, 1, {2, 2, 2}, 0});
+  const fs::path whole = scratch("whole.msh");
+  write_gmsh(whole.string(), box, true);
+  std::ifstream in(whole, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t cut : {bytes.size() / 3, bytes.size() / 2, bytes.size() - 20}) {
+    SCOPED_TRACE(cut);
+    { std::ofstream(scratch("cut.msh"), std::ios::binary) << bytes.substr(0, cut); }
+    try {
+      discretize(parse_deck(deck("  box: {material: steel, mesh: {file: cut.msh}}\n"), "mesh.yaml", whole.parent_path().string()));
+      ADD_FAILURE() << "a truncated file was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("cut.msh"), std::string::npos) << e.what();
+    }
+  }
 }

@@ -437,10 +437,14 @@ struct Parser {
       std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
       if (extension == ".e" || extension == ".exo" || extension == ".g" || extension == ".gen")
         m.format = "exodus";
+      else if (extension == ".inp")
+        m.format = "abaqus";
+      else if (extension == ".msh")
+        m.format = "gmsh";
       else
         ctx.error(r["file"].pos, r.path_of("file"),
-                  fmt::format("cannot tell the mesh format from the extension '{}' (exodus: .e, .exo, .g, .gen); give "
-                              "format",
+                  fmt::format("cannot tell the mesh format from the extension '{}' (exodus: .e, .exo, .g, .gen; abaqus: "
+                              ".inp; gmsh: .msh); give format",
                               extension));
     }
     return m;

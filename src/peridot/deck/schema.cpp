@@ -245,14 +245,17 @@ std::vector<SectionSpec> make_sections() {
                 horizon_factor_key(false),
                 horizon_key(false)}});
   s.push_back({"bodies.<name>.mesh",
-               "a mesh file: one point per element at its centroid with the element's volume (HEX8, TET4, WEDGE6; "
-               "QUAD4, TRI3 in 2D, times the thickness), or one per SPHERE element (its node, and its volume "
-               "attribute as Peridigm and Sierra write it)",
+               "a mesh file: one point per element at its centroid with the element's volume (hexahedra, tetrahedra and "
+               "prisms of 8, 4 and 6 nodes; quadrilaterals and triangles of 4 and 3 nodes in 2D, times the thickness), "
+               "or one per Exodus SPHERE element (its node, and its volume attribute as Peridigm and Sierra write it)",
                {{.key = "file", .type = VT::text, .description = "the mesh file, relative to the deck", .required = true},
-                {.key = "format", .type = VT::choice, .description = "exodus; by default from the extension (.e, .exo, .g, .gen)",
-                 .choices = {"exodus"}},
+                {.key = "format", .type = VT::choice,
+                 .description = "exodus (.e, .exo, .g, .gen), abaqus (.inp) or gmsh (.msh, format 4.1, ASCII or binary); by "
+                                "default from the extension",
+                 .choices = {"exodus", "abaqus", "gmsh"}},
                 {.key = "block", .type = VT::text,
-                 .description = "the element block this body takes, by name (or block_<id>); every block when omitted"},
+                 .description = "what this body takes, by name: an Exodus element block (or block_<id>), an Abaqus element "
+                                "set, a Gmsh physical group (or entity_<tag>); every element when omitted"},
                 {.key = "scale", .default_yaml = "1", .range = positive,
                  .description = "coordinates are multiplied by this: 1e-3 for a mesh drawn in millimetres"}}});
   s.push_back({"shape", "exactly one of these keys; in 2D box → rectangle, cylinder and sphere → disc, tube → annulus",

@@ -1,6 +1,8 @@
 #include "peridot/geometry/mesh.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -166,48 +168,76 @@ ElementMeasure measure_element(ElementShape shape, std::span<const Vec3> corners
   }
 }
 
+namespace {
+
+Mesh read_mesh(const MeshSpec& spec) {
+  if (spec.format == "abaqus") return read_abaqus_mesh(spec.file, spec.pos);
+  if (spec.format == "gmsh") return read_gmsh_mesh(spec.file, spec.pos);
+  return read_exodus_mesh(spec.file, spec.pos);
+}
+
+}  // namespace
+
 MeshPoints mesh_points(const MeshSpec& spec, int dimension, double cross_section, const std::string& body) {
-  const Mesh mesh = read_exodus_mesh(spec.file, spec.pos);  // the one format so far (deck/schema.cpp)
+  const Mesh mesh = read_mesh(spec);
   const std::string where = fmt::format("bodies.{}.mesh ({})", body, spec.file);
-  std::vector<const MeshBlock*> taken;
+  // The elements taken, as (block, element in block): a block by name, else an element set, else all.
+  std::vector<std::pair<std::size_t, std::size_t>> taken;
+  std::string wanted = spec.block;  // Abaqus names compare without case (the reader has them in capitals)
+  if (spec.format == "abaqus")
+    std::transform(wanted.begin(), wanted.end(), wanted.begin(), [](unsigned char c) { return std::toupper(c); });
   std::vector<std::string> names;
-  for (const MeshBlock& block : mesh.blocks) {
-    names.push_back(block.name);
-    if (spec.block.empty() || block.name == spec.block) taken.push_back(&block);
+  std::vector<std::size_t> first(mesh.blocks.size() + 1, 0);
+  for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {
+    first[b + 1] = first[b] + mesh.blocks[b].size();
+    names.push_back(mesh.blocks[b].name);
+    if (spec.block.empty() || mesh.blocks[b].name == wanted)
+      for (std::size_t e = 0; e < mesh.blocks[b].size(); ++e) taken.emplace_back(b, e);
+  }
+  for (const MeshElementSet& set : mesh.element_sets) {
+    names.push_back(set.name);
+    if (spec.block.empty() || set.name != wanted || !taken.empty()) continue;
+    for (std::size_t global : set.elements) {
+      const auto b = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), global) - first.begin()) - 1;
+      taken.emplace_back(b, global - first[b]);
+    }
   }
   if (taken.empty())
-    throw InputError(spec.pos, spec.block.empty() ? fmt::format("{}: the file has no element block", where)
-                                                  : fmt::format("{}: no element block '{}'; the file has {}", where,
+    throw InputError(spec.pos, spec.block.empty() ? fmt::format("{}: the file has no element", where)
+                                                  : fmt::format("{}: no element block or set '{}'; the file has {}", where,
                                                                 spec.block, fmt::join(names, ", ")));
-  if (dimension >= 2 && mesh.dimension != dimension)
+  if (dimension >= 2 && mesh.dimension < dimension)
     throw InputError(spec.pos, fmt::format("{}: a {}D mesh in a {}D deck", where, mesh.dimension, dimension));
 
   MeshPoints points;
   std::vector<Vec3> corners;
-  for (const MeshBlock* block : taken) {
-    const int element_dim = element_dimension(block->shape);
+  for (const auto& [b, e] : taken) {
+    const MeshBlock& block = mesh.blocks[b];
+    const int element_dim = element_dimension(block.shape);
     if (element_dim != 0 && element_dim != dimension)
       throw InputError(spec.pos, fmt::format("{}: block '{}' holds {} elements, which have no place in a {}D deck{}",
-                                             where, block->name, element_name(block->shape), dimension,
+                                             where, block.name, element_name(block.shape), dimension,
                                              dimension == 1 ? " (a bar reads SPHERE elements only)" : ""));
-    const int n = corner_count(block->shape);
-    for (std::size_t e = 0; e < block->size(); ++e) {
-      corners.clear();
-      for (int i = 0; i < n; ++i) corners.push_back(spec.scale * mesh.nodes[block->connectivity[e * n + i]]);
-      ElementMeasure m = measure_element(block->shape, corners);
-      double volume = block->shape == ElementShape::sphere ? block->sphere_volume[e] * spec.scale * spec.scale * spec.scale
-                                                           : m.measure * (dimension == 2 ? cross_section : 1.0);
-      if (!m.valid || !(volume > 0) || !std::isfinite(volume))
-        throw InputError(spec.pos,
-                         fmt::format("{}: element {} of block '{}' ({}) is {} (volume {:g})", where, e + 1, block->name,
-                                     element_name(block->shape),
-                                     block->shape == ElementShape::sphere ? "given no positive volume"
-                                                                          : "inverted or degenerate: its Jacobian is not "
-                                                                            "positive everywhere",
-                                     volume));
-      points.x.push_back(m.centroid);
-      points.volume.push_back(volume);
-    }
+    if (dimension == 2 && element_dim == 2)
+      for (int i = 0; i < corner_count(block.shape); ++i)
+        if (mesh.nodes[block.connectivity[e * corner_count(block.shape) + i]].z != 0)
+          throw InputError(spec.pos, fmt::format("{}: element {} of block '{}' lies off the plane z = 0", where, e + 1,
+                                                 block.name));
+    const int n = corner_count(block.shape);
+    corners.clear();
+    for (int i = 0; i < n; ++i) corners.push_back(spec.scale * mesh.nodes[block.connectivity[e * n + i]]);
+    const ElementMeasure m = measure_element(block.shape, corners);
+    const double volume = block.shape == ElementShape::sphere ? block.sphere_volume[e] * spec.scale * spec.scale * spec.scale
+                                                              : m.measure * (dimension == 2 ? cross_section : 1.0);
+    if (!m.valid || !(volume > 0) || !std::isfinite(volume))
+      throw InputError(spec.pos, fmt::format("{}: element {} of block '{}' ({}) is {} (volume {:g})", where, e + 1,
+                                             block.name, element_name(block.shape),
+                                             block.shape == ElementShape::sphere
+                                                 ? "given no positive volume"
+                                                 : "inverted or degenerate: its Jacobian is not positive everywhere",
+                                             volume));
+    points.x.push_back(m.centroid);
+    points.volume.push_back(volume);
   }
   return points;
 }

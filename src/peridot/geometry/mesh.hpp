@@ -28,11 +28,19 @@ struct MeshBlock {
   std::size_t size() const { return connectivity.size() / static_cast<std::size_t>(corner_count(shape)); }
 };
 
+/// A named group of elements across blocks (an Abaqus element set, a Gmsh physical group), by their index in
+/// the order of the blocks.
+struct MeshElementSet {
+  std::string name;
+  std::vector<std::size_t> elements;
+};
+
 struct Mesh {
   std::string file;
   int dimension = 3;        ///< of the node coordinates
   std::vector<Vec3> nodes;  ///< unscaled, as in the file
   std::vector<MeshBlock> blocks;
+  std::vector<MeshElementSet> element_sets;
 };
 
 /// An element's centroid and measure (volume of a solid, area of a 2D element). `valid` is false when the
@@ -50,12 +58,16 @@ struct MeshPoints {
   std::vector<double> volume;
 };
 
-/// The points of a body's mesh: of its block, or of every block. `cross_section` is the 2D thickness (1 in
+/// The points of a body's mesh: of its block or element set, or of every block. `cross_section` is the 2D thickness (1 in
 /// 3D). Throws InputError at spec.pos for a file that cannot be read, an unknown block, an element type
 /// that does not fit the deck's dimension, or an inverted or degenerate element (named by block and number).
 MeshPoints mesh_points(const MeshSpec& spec, int dimension, double cross_section, const std::string& body);
 
-/// Exodus II through libexodusii (geometry/mesh_exodus.cpp). Throws InputError at `pos`.
+/// The readers, one file each: Exodus II through libexodusii (mesh_exodus.cpp), Abaqus input (mesh_abaqus.cpp),
+/// Gmsh 4.1, ASCII or binary (mesh_gmsh.cpp). They throw InputError: at `pos`, or at the mesh file's line
+/// for a problem in a text file.
 Mesh read_exodus_mesh(const std::string& path, const SourcePos& pos);
+Mesh read_abaqus_mesh(const std::string& path, const SourcePos& pos);
+Mesh read_gmsh_mesh(const std::string& path, const SourcePos& pos);
 
 }  // namespace peridot
