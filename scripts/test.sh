@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds Peridot and runs the whole test suite (unit, verification,
-# regression and example smoke tests), then the deck fuzzer for a minute. This is what CI runs (.ci/run).
+# regression and example smoke tests), then the deck and mesh fuzzers for a minute and a half. This is what CI runs (.ci/run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
@@ -10,5 +10,7 @@ cmake --build build
 # passive waiting keeps OpenMP from spinning against the other test on a 2-core machine.
 export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 ctest --test-dir build --output-on-failure -j 2 "$@"
-# Then the deck fuzzer for a minute: any deck that crashes the loader or the set-up fails the run.
+# Then the deck fuzzer for a minute and the mesh fuzzer for half a minute: any deck or Gmsh/Abaqus file that
+# crashes the loader, the set-up or a mesh reader fails the run.
 bash scripts/fuzz.sh 60
+FUZZ_TARGET=mesh bash scripts/fuzz.sh 30
