@@ -442,6 +442,8 @@ TEST(ExodusMesh, BadMeshesAreRefusedAtTheDeckEntry) {
   expect_refused(deck("  box: {material: steel, mesh: {file: shell.e}}\n"), folder,
                  "has elements of type HEX20 with 8 nodes; supported are");
   expect_refused(deck("  box: {material: steel, mesh: {file: absent.e}}\n"), folder, "file not found");
+  expect_refused(deck("  box: {material: steel, mesh: {file: /dev/zero, format: gmsh}}\n"), folder,
+                 "not a regular file: /dev/zero");
   const fs::path text = scratch("not_a_mesh.e");
   { std::ofstream(text) << "hello\n"; }
   expect_refused(deck("  box: {material: steel, mesh: {file: not_a_mesh.e}}\n"), folder,

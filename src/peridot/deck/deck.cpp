@@ -65,7 +65,12 @@ struct Parser {
 
   std::string resolve_file(const Value& v, const std::string& path, bool must_exist) {
     std::string resolved = fs::absolute(fs::path(base_dir) / v.text).lexically_normal().string();
-    if (must_exist && !fs::exists(resolved)) ctx.error(v.pos, path, "file not found: " + resolved);
+    std::error_code error;
+    if (must_exist && !fs::exists(resolved, error)) {
+      ctx.error(v.pos, path, "file not found: " + resolved);
+    } else if (must_exist && !fs::is_regular_file(resolved, error)) {  // a folder, /dev/zero, a pipe: never read
+      ctx.error(v.pos, path, "not a regular file: " + resolved);
+    }
     return resolved;
   }
 
