@@ -494,6 +494,16 @@ TEST(MeshInput, BadTextMeshesAreRefusedAtTheirLine) {
                     17, "names node 5, which $Nodes does not give");
 }
 
+TEST(MeshInput, AbaqusSetNamedAgainGrowsAndTakesOtherSets) {
+  const fs::path path = scratch("sets_again.inp");
+  std::ofstream(path) << "*Node\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n"
+                         "*Element, type=C3D4\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n*Elset, elset=A\n1\n*Elset, elset=b\n2\n"
+                         "*Elset, elset=A\nB\n";
+  const Problem p = parse_deck(deck("  box: {material: steel, mesh: {file: sets_again.inp, block: a}}\n"), "mesh.yaml",
+                               path.parent_path().string());
+  EXPECT_EQ(discretize(p).num_points(), 2u);
+}
+
 TEST(MeshInput, TruncatedBinaryGmshIsRefused) {
   const BoxMesh box = box_mesh({{0, 0, 0}, 1, {2, 2, 2}, 0});
   const fs::path whole = scratch("whole.msh");

@@ -420,7 +420,7 @@ struct Parser {
       if (r.given("points_file")) b.points_file = resolve_file(r["points_file"], r.path_of("points_file"), true);
       if (r.given("block")) b.block_filter = static_cast<int>(r["block"].integer);
       if (r.given("block") && !r.present("points_file"))
-        ctx.error(r["block"].key_pos, path, "'block' filters the rows of a points_file, and this body has none");
+        ctx.error(r["block"].key_pos, path, "'block' filters the rows of a points_file, and this body has none (a mesh takes mesh.block)");
       HorizonInput h = read_horizon(r);
       b.horizon = h.given() ? resolve_horizon(h, path) : p.horizon;
       p.bodies.push_back(std::move(b));

@@ -94,10 +94,10 @@ struct MaterialSpec {
 /// A body's points from a mesh file (geometry/mesh.hpp): one point per element at its centroid with the
 /// element's volume, or one per SPHERE element (a node and its volume attribute).
 struct MeshSpec {
-  SourcePos pos;       ///< the `mesh` key: where a problem with the file is reported
+  SourcePos pos;       ///< the `file` entry: where a problem with the file is reported
   std::string file;    ///< resolved relative to the deck's folder
-  std::string format;  ///< exodus (given, or guessed from the file's extension)
-  std::string block;   ///< the element block taken; empty = every block
+  std::string format;  ///< exodus, abaqus or gmsh (given, or from the file's extension)
+  std::string block;   ///< the element block, element set or physical group taken; empty = every element
   double scale = 1;    ///< coordinates are multiplied by this (1e-3 for a mesh in millimetres)
 };
 

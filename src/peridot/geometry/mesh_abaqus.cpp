@@ -95,7 +95,12 @@ class Reader {
         }
         if (keyword == "*ELSET") {
           if (!options.contains("ELSET")) fail("*ELSET without elset=");
-          mesh_.element_sets.push_back({upper(options["ELSET"]), {}});
+          const std::string name = upper(options["ELSET"]);  // a set named again grows, as in Abaqus
+          const auto known = std::find_if(mesh_.element_sets.begin(), mesh_.element_sets.end(),
+                                          [&](const MeshElementSet& s) { return s.name == name; });
+          current_set_ = static_cast<std::size_t>(known - mesh_.element_sets.begin());
+          if (known == mesh_.element_sets.end()) mesh_.element_sets.push_back({name, {}});
+          if (set_lines_.size() < mesh_.element_sets.size()) set_lines_.push_back(line_number_);
           generate = options.contains("GENERATE");
           section = Section::elset;
         }
@@ -187,8 +192,7 @@ class Reader {
   }
 
   void elset_line(const std::vector<std::string>& fields, bool generate) {
-    MeshElementSet& set = mesh_.element_sets.back();
-    if (set_lines_.size() < mesh_.element_sets.size()) set_lines_.resize(mesh_.element_sets.size(), line_number_);
+    MeshElementSet& set = mesh_.element_sets[current_set_];
     if (generate) {
       if (fields.size() < 2) fail("*ELSET, GENERATE takes first, last[, step]");
       const std::int64_t from = integer(fields[0]), to = integer(fields[1]);
@@ -201,11 +205,13 @@ class Reader {
       if (field.empty()) continue;
       if (std::isalpha(static_cast<unsigned char>(field[0]))) {  // another set, by name
         const std::string name = upper(field);
-        const auto other = std::find_if(mesh_.element_sets.begin(), mesh_.element_sets.end() - 1,
+        const auto other = std::find_if(mesh_.element_sets.begin(), mesh_.element_sets.end(),
                                         [&](const MeshElementSet& s) { return s.name == name; });
-        if (other == mesh_.element_sets.end() - 1) fail(fmt::format("element set '{}' is not defined above", field));
-        // Stored as element numbers until the end, like the others: copy them back to numbers.
-        set.elements.insert(set.elements.end(), other->elements.begin(), other->elements.end());
+        if (other == mesh_.element_sets.end() || &*other == &set)
+          fail(fmt::format("element set '{}' is not defined above", field));
+        // Both hold element numbers until the end of the file, when every set becomes element indices.
+        const std::vector<std::size_t> copied = other->elements;
+        set.elements.insert(set.elements.end(), copied.begin(), copied.end());
         continue;
       }
       set.elements.push_back(static_cast<std::size_t>(integer(field)));
@@ -219,6 +225,7 @@ class Reader {
   std::map<std::int64_t, std::size_t> node_index_, element_index_;
   std::size_t element_count_ = 0;
   int pending_ = 0;  ///< nodes still expected for the element being read
+  std::size_t current_set_ = 0;  ///< the *ELSET whose lines are being read
   std::vector<int> block_lines_, set_lines_;
 };
 
