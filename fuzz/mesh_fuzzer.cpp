@@ -22,12 +22,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::ofstream out(spec.file, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
   }
-  for (int dimension : {3, 2}) {
-    try {
-      (void)peridot::mesh_points(spec, dimension, 1e-3, "fuzz");
-    } catch (const peridot::InputError&) {
-      // refused with a position: what a bad mesh should get
+  try {
+    const peridot::Mesh mesh = peridot::read_mesh(spec);
+    for (int dimension : {3, 2}) {
+      try {
+        (void)peridot::mesh_points(mesh, spec, dimension, 1e-3, "fuzz");
+      } catch (const peridot::InputError&) {
+        // refused with a position: what a bad mesh should get
+      }
     }
+  } catch (const peridot::InputError&) {
+    // an unreadable file, refused the same way
   }
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <numeric>
 #include <sstream>
 
@@ -176,13 +177,17 @@ Discretization discretize(const Problem& problem) {
   std::uint64_t rng = problem.seed;
   std::vector<Diagnostic> errors;
   check_size(problem);
+  std::map<std::string, Mesh> meshes;
   for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
     const BodySpec& body = problem.bodies[b];
     const std::size_t before = raw.size();
     if (body.shape) {
       fill_shape(problem, static_cast<std::int32_t>(b), raw, rng);
     } else if (body.mesh) {
-      const MeshPoints points = mesh_points(*body.mesh, problem.dimension, problem.cross_section(), body.name);
+      const std::string key = body.mesh->format + ":" + body.mesh->file;  // bodies sharing a file read it once
+      if (!meshes.contains(key)) meshes.emplace(key, read_mesh(*body.mesh));
+      const MeshPoints points =
+          mesh_points(meshes.at(key), *body.mesh, problem.dimension, problem.cross_section(), body.name);
       for (std::size_t i = 0; i < points.x.size(); ++i)
         raw.push_back({points.x[i], points.volume[i], static_cast<std::int32_t>(b), 0});
     } else {

@@ -168,7 +168,10 @@ ElementMeasure measure_element(ElementShape shape, std::span<const Vec3> corners
   }
 }
 
-namespace {
+std::string upper_case(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
+  return text;
+}
 
 Mesh read_mesh(const MeshSpec& spec) {
   if (spec.format == "abaqus") return read_abaqus_mesh(spec.file, spec.pos);
@@ -176,16 +179,12 @@ Mesh read_mesh(const MeshSpec& spec) {
   return read_exodus_mesh(spec.file, spec.pos);
 }
 
-}  // namespace
-
-MeshPoints mesh_points(const MeshSpec& spec, int dimension, double cross_section, const std::string& body) {
-  const Mesh mesh = read_mesh(spec);
+MeshPoints mesh_points(const Mesh& mesh, const MeshSpec& spec, int dimension, double cross_section, const std::string& body) {
   const std::string where = fmt::format("bodies.{}.mesh ({})", body, spec.file);
   // The elements taken, as (block, element in block): a block by name, else an element set, else all.
   std::vector<std::pair<std::size_t, std::size_t>> taken;
-  std::string wanted = spec.block;  // Abaqus names compare without case (the reader has them in capitals)
-  if (spec.format == "abaqus")
-    std::transform(wanted.begin(), wanted.end(), wanted.begin(), [](unsigned char c) { return std::toupper(c); });
+  // Abaqus names compare without case (the reader has them in capitals).
+  const std::string wanted = spec.format == "abaqus" ? upper_case(spec.block) : spec.block;
   std::vector<std::string> names;
   std::vector<std::size_t> first(mesh.blocks.size() + 1, 0);
   for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {

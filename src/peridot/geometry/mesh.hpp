@@ -58,10 +58,16 @@ struct MeshPoints {
   std::vector<double> volume;
 };
 
-/// The points of a body's mesh: of its block or element set, or of every block. `cross_section` is the 2D thickness (1 in
-/// 3D). Throws InputError at spec.pos for a file that cannot be read, an unknown block, an element type
-/// that does not fit the deck's dimension, or an inverted or degenerate element (named by block and number).
-MeshPoints mesh_points(const MeshSpec& spec, int dimension, double cross_section, const std::string& body);
+/// The mesh file of a spec, by its format's reader (below).
+Mesh read_mesh(const MeshSpec& spec);
+
+/// The points of a body's mesh: of its block or element set, or of every block. `cross_section` is the 2D
+/// thickness (1 in 3D). Throws InputError at spec.pos for an unknown block, an element type that does not fit
+/// the deck's dimension, or an inverted or degenerate element (named by block and number).
+MeshPoints mesh_points(const Mesh& mesh, const MeshSpec& spec, int dimension, double cross_section, const std::string& body);
+
+/// Names compared without case (Abaqus names, Exodus topologies and attributes): in capitals.
+std::string upper_case(std::string text);
 
 /// The readers, one file each: Exodus II through libexodusii (mesh_exodus.cpp), Abaqus input (mesh_abaqus.cpp),
 /// Gmsh 4.1, ASCII or binary (mesh_gmsh.cpp). They throw InputError: at `pos`, or at the mesh file's line

@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -16,11 +17,6 @@
 namespace peridot {
 
 namespace {
-
-std::string upper(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
-  return text;
-}
 
 std::string trim(const std::string& text) {
   const auto begin = text.find_first_not_of(" \t\r");
@@ -69,18 +65,18 @@ class Reader {
       if (line.empty() || line.rfind("**", 0) == 0) continue;
       if (line[0] == '*') {
         const std::vector<std::string> fields = split_commas(line);
-        const std::string keyword = upper(fields[0]);
+        const std::string keyword = upper_case(fields[0]);
         std::map<std::string, std::string> options;
         for (std::size_t i = 1; i < fields.size(); ++i) {
           const auto equal = fields[i].find('=');
-          options[upper(trim(fields[i].substr(0, equal)))] = equal == std::string::npos ? "" : trim(fields[i].substr(equal + 1));
+          options[upper_case(trim(fields[i].substr(0, equal)))] = equal == std::string::npos ? "" : trim(fields[i].substr(equal + 1));
         }
         section = Section::none;
         if (keyword == "*PART" && ++parts > 1) fail("a second *PART; export the mesh flat (one part, or none)");
         if (keyword == "*NODE") section = Section::node;
         if (keyword == "*INSTANCE") section = Section::instance;
         if (keyword == "*ELEMENT") {
-          const std::string type = upper(options["TYPE"]);
+          const std::string type = upper_case(options["TYPE"]);
           const std::optional<ElementShape> shape = shape_of(type);
           if (!shape)
             fail(fmt::format("element type '{}' is not supported (C3D8*, C3D4*, C3D6*, and in 2D CPS4*, CPE4*, CPS3*, "
@@ -88,14 +84,14 @@ class Reader {
                              options["TYPE"]));
           MeshBlock b;
           b.shape = *shape;
-          b.name = options.contains("ELSET") ? upper(options["ELSET"]) : fmt::format("ELEMENTS_{}", mesh_.blocks.size() + 1);
+          b.name = options.contains("ELSET") ? upper_case(options["ELSET"]) : fmt::format("ELEMENTS_{}", mesh_.blocks.size() + 1);
           mesh_.blocks.push_back(std::move(b));
           block = mesh_.blocks.size() - 1;
           section = Section::element;
         }
         if (keyword == "*ELSET") {
           if (!options.contains("ELSET")) fail("*ELSET without elset=");
-          const std::string name = upper(options["ELSET"]);  // a set named again grows, as in Abaqus
+          const std::string name = upper_case(options["ELSET"]);  // a set named again grows, as in Abaqus
           const auto known = std::find_if(mesh_.element_sets.begin(), mesh_.element_sets.end(),
                                           [&](const MeshElementSet& s) { return s.name == name; });
           current_set_ = static_cast<std::size_t>(known - mesh_.element_sets.begin());
@@ -148,28 +144,22 @@ class Reader {
   }
 
  private:
-  double number(const std::string& text) const {
+  /// The whole field as a number (std::stod) or an integer (std::stoll), else a failure naming it.
+  template <class T>
+  T parse(const std::string& text, const char* what) const {
     std::size_t used = 0;
-    double value = 0;
+    T value{};
     try {
-      value = std::stod(text, &used);
+      if constexpr (std::is_floating_point_v<T>) value = std::stod(text, &used);
+      else value = std::stoll(text, &used);
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used == 0 || used != text.size()) fail(fmt::format("'{}' is not a number", text));
+    if (used == 0 || used != text.size()) fail(fmt::format("'{}' is not {}", text, what));
     return value;
   }
-  std::int64_t integer(const std::string& text) const {
-    std::size_t used = 0;
-    long long value = 0;
-    try {
-      value = std::stoll(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != text.size()) fail(fmt::format("'{}' is not an integer", text));
-    return value;
-  }
+  double number(const std::string& text) const { return parse<double>(text, "a number"); }
+  std::int64_t integer(const std::string& text) const { return parse<std::int64_t>(text, "an integer"); }
 
   // An element's number and nodes; a long element continues on the next line after a trailing comma.
   void element_line(const std::vector<std::string>& fields, std::size_t b) {
@@ -204,7 +194,7 @@ class Reader {
     for (const std::string& field : fields) {
       if (field.empty()) continue;
       if (std::isalpha(static_cast<unsigned char>(field[0]))) {  // another set, by name
-        const std::string name = upper(field);
+        const std::string name = upper_case(field);
         const auto other = std::find_if(mesh_.element_sets.begin(), mesh_.element_sets.end(),
                                         [&](const MeshElementSet& s) { return s.name == name; });
         if (other == mesh_.element_sets.end() || &*other == &set)

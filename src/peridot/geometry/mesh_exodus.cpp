@@ -2,7 +2,6 @@
 // HEX8 under their usual spellings). A SPHERE element's volume is its attribute named "volume", or, unnamed, its
 // second attribute (Sierra and Peridigm write radius, then volume).
 #include <algorithm>
-#include <cctype>
 #include <optional>
 
 #include <exodusII.h>
@@ -14,15 +13,10 @@ namespace peridot {
 
 namespace {
 
-std::string upper(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
-  return text;
-}
-
 /// The element shape of an Exodus topology name with this many nodes per element; none for others (a HEX20,
 /// a SHELL4, a BEAM2, ...).
 std::optional<ElementShape> shape_of(const std::string& topology, std::int64_t nodes) {
-  const std::string t = upper(topology);
+  const std::string t = upper_case(topology);
   auto is = [&](std::initializer_list<const char*> names, std::int64_t count) {
     return nodes == count && std::any_of(names.begin(), names.end(), [&](const char* n) { return t == n; });
   };
@@ -127,7 +121,7 @@ Mesh read_exodus_mesh(const std::string& path, const SourcePos& pos) {
       std::vector<char*> pointers;
       for (auto& buffer : buffers) pointers.push_back(buffer.data());
       if (attributes > 0 && ex_get_attr_names(file.id(), EX_ELEM_BLOCK, ids[b], pointers.data()) >= 0)
-        for (std::size_t a = 0; a < attributes; ++a) attribute_names[a] = upper(buffers[a].data());
+        for (std::size_t a = 0; a < attributes; ++a) attribute_names[a] = upper_case(buffers[a].data());
       std::size_t volume_index = attributes;
       for (std::size_t a = 0; a < attributes; ++a)
         if (attribute_names[a] == "VOLUME") volume_index = a;
