@@ -173,8 +173,9 @@ void write_file_atomically(const fs::path& path, const std::string& text) {
 /// Distributed, only rank 0 writes (enabled).
 class RunLog {
  public:
-  RunLog(const fs::path& path, std::ostream* echo, bool enabled, bool append)
-      : enabled_(enabled), echo_(echo) {
+  RunLog(std::ostream* echo, bool enabled) : enabled_(enabled), echo_(echo) {}
+  /// The file, once its folder exists; lines before go to the echo alone.
+  void open(const fs::path& path, bool append) {
     if (enabled_) file_.open(path, append ? std::ios::app : std::ios::trunc);
   }
   void line(const std::string& text) {
@@ -195,6 +196,7 @@ class RunLog {
 
 class History {
  public:
+  /// Rows go to the CSV file at `path`, and are kept in memory (rows()); an empty path: in memory only.
   History(const fs::path& path, Simulation& sim)
       : sim_(sim), contact_energy_(!sim.problem().rigid_bodies.empty() || sim.problem().contact) {
     const Problem& problem = sim.problem();
@@ -226,10 +228,13 @@ class History {
       probes_.push_back({nearest_point(sim.output_discretization(), probe.point), probe.field});
       columns.push_back(probe.name);
     }
-    writer_ = std::make_unique<CsvWriter>(path.string(), columns);
-    columns_ = std::move(columns);
+    if (!path.empty()) writer_ = std::make_unique<CsvWriter>(path.string(), columns);
+    rows_.columns = std::move(columns);
   }
-  void close() { writer_->close(); }
+  void close() {
+    if (writer_) writer_->close();
+  }
+  const HistoryRows& rows() const { return rows_; }
   std::int64_t copy_rows(const std::string& earlier, std::int64_t last_step, std::int64_t every) {
     return writer_->copy_rows(earlier, last_step, every);
   }
@@ -260,9 +265,10 @@ class History {
       row.insert(row.end(), {r.x, r.y, r.z});
     }
     for (const auto& [point, field] : probes_) row.push_back(point_field(s, field, point));
-    writer_->write_row(row);
+    if (writer_) writer_->write_row(row);
+    rows_.values.insert(rows_.values.end(), row.begin(), row.end());
     for (std::size_t k = 0; k < row.size(); ++k)
-      if (!std::isfinite(row[k])) return columns_[k];
+      if (!std::isfinite(row[k])) return rows_.columns[k];
     return {};
   }
 
@@ -282,8 +288,8 @@ class History {
   bool contact_energy_ = false;
   std::vector<const NodeSet*> reaction_sets_;
   std::vector<std::pair<std::size_t, std::string>> probes_;
-  std::unique_ptr<CsvWriter> writer_;
-  std::vector<std::string> columns_;
+  std::unique_ptr<CsvWriter> writer_;  // null: in memory only
+  HistoryRows rows_;
 };
 
 class Progress {
@@ -326,25 +332,35 @@ fs::path earlier_results(const fs::path& dir, const std::string& name) {
 
 }  // namespace
 
-RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
-  Simulation sim(problem);  // every input error surfaces here, before anything is written
-  const Communicator& comm = sim.communicator();
-  const bool root = comm.is_root();  // distributed, rank 0 writes every output
-  const bool restart = !options.restart.empty();
-  if (restart) {  // checked and restored before anything is written
-    const CheckpointData checkpoint = read_checkpoint(options.restart, sim);
-    if (checkpoint.step > sim.total_steps())
-      throw InputError(SourcePos{options.restart, 0, 0},
-                       fmt::format("restart: '{}' is at step {}, after this deck's end (step {}); give a later end time "
-                                   "or more steps", options.restart, checkpoint.step, sim.total_steps()));
-    sim.initialize();
-    restore_checkpoint(sim, checkpoint, options.restart);
-  }
+struct Run::Impl {
+  Impl(const Problem& problem, const RunOptions& run_options)
+      : options(run_options), sim(problem), comm(sim.communicator()), root(comm.is_root() && options.write_files),
+        restart(!options.restart.empty()), dir(problem.output.directory), results(dir),
+        log(options.log, root),
+        progress(options.progress && problem.output.progress && comm.is_root()) {}
 
-  // A failure to write on rank 0 stops every rank (the others would wait for it in the next collective), and
-  // goes into the run log as well as to stderr (the log may be the file that cannot be written).
-  RunLog* log_of_failures = nullptr;
-  auto on_root = [&](auto&& write) {
+  RunOptions options;
+  Simulation sim;  // every input error surfaces here, before anything is written
+  const Communicator& comm;
+  const bool root;  // distributed, rank 0 writes every output (no rank does without write_files)
+  const bool restart;
+  const fs::path dir;
+  ResultFiles results;
+  RunLog log;
+  Progress progress;
+  std::optional<StopSignals> stop;
+  std::unique_ptr<ExodusWriter> exodus;
+  std::unique_ptr<History> history;
+  std::vector<fs::path> checkpoints;  // the newest output.checkpoint_keep this run wrote stay
+  std::chrono::steady_clock::time_point last_checkpoint = std::chrono::steady_clock::now();
+  std::int64_t checkpoint_step = -1;
+  std::int64_t frame_step = -1, row_step = -1;  // the steps of the last frame and row written
+  bool finished = false;
+
+  /// A failure to write on rank 0 stops every rank (the others would wait for it in the next collective), and
+  /// goes into the run log as well as to stderr (the log may be the file that cannot be written).
+  template <class Write>
+  void on_root(Write&& write) {
     std::string failure;
     if (root) {
       try {
@@ -356,19 +372,43 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
     const int failing = comm.first_rank_with(!failure.empty());
     if (failing < 0) return;
     const std::string message = comm.broadcast(failure, failing);
-    if (log_of_failures) log_of_failures->file_line("error: " + message);
+    log.file_line("error: " + message);
     throw OutputError(message);
-  };
+  }
 
+  void open_outputs();
+  void write_outputs(bool force);
+  void write_checkpoint();
+  bool checkpoint_due(bool looked);
+  /// Closed before they are moved into place; a failure to close is a failure to write.
+  void close_results(bool publish) {
+    finished = true;
+    on_root([&] {
+      if (exodus) exodus->close();
+      if (history) history->close();
+      if (publish) results.publish();
+    });
+  }
+};
+
+void Run::Impl::open_outputs() {
+  const Problem& problem = sim.problem();
+  if (restart) {  // checked and restored before anything is written
+    const CheckpointData checkpoint = read_checkpoint(options.restart, sim);
+    if (checkpoint.step > sim.total_steps())
+      throw InputError(SourcePos{options.restart, 0, 0},
+                       fmt::format("restart: '{}' is at step {}, after this deck's end (step {}); give a later end time "
+                                   "or more steps", options.restart, checkpoint.step, sim.total_steps()));
+    sim.initialize();
+    restore_checkpoint(sim, checkpoint, options.restart);
+    checkpoint_step = frame_step = row_step = sim.state().step;
+  }
   const OutputSpec& output = problem.output;
-  const fs::path dir = output.directory;
-  ResultFiles results(dir);
   on_root([&] {
     fs::create_directories(dir);
     write_file_atomically(results.partial("resolved_deck.yaml"), resolved_deck_yaml(problem));
+    log.open(dir / "run.log", restart);
   });
-  RunLog log(dir / "run.log", options.log, root, restart);
-  log_of_failures = &log;
   log.line("peridot run " + problem.deck_path + (restart ? " --restart " + options.restart : ""));
   for (const Diagnostic& w : problem.warnings) log.line(w.str());
   std::istringstream setup(describe_setup(sim));
@@ -377,11 +417,9 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
     const std::string warning = fmt::format("warning: time step {:.6g} s is above the stable time step {:.6g} s",
                                             sim.time_step(), sim.stable_time_step());
     log.line(warning);
-    if (!options.log && root) std::cerr << warning << '\n';  // quiet runs still hear about it
+    if (!options.log && comm.is_root()) std::cerr << warning << '\n';  // quiet runs still hear about it
   }
 
-  std::unique_ptr<ExodusWriter> exodus;
-  std::unique_ptr<History> history;
   fs::path earlier_exodus, earlier_history;  // a restart's earlier results, found before NAME.partial is new
   on_root([&] {
     if (restart && output.exodus_every > 0) earlier_exodus = earlier_results(dir, output.exodus_file);
@@ -393,6 +431,10 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
                                               "peridot: " + problem.deck_path, problem.cross_section(),
                                               optional_exodus_fields(sim));
     }
+  });
+  // Without files the history is still kept in memory (rank 0) for Run::history.
+  if (output.history_every > 0 && comm.is_root() && !options.write_files) history = std::make_unique<History>(fs::path(), sim);
+  on_root([&] {
     if (output.history_every > 0) history = std::make_unique<History>(results.partial(output.history_file), sim);
   });
   if (restart) {  // the earlier frames and rows up to the checkpoint, those on this run's schedule
@@ -424,112 +466,166 @@ RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
     });
     for (const std::string& note : notes) log.line(note);
   }
-  // Closed before they are moved into place; a failure to close is a failure to write.
-  auto close_results = [&](bool publish) {
-    on_root([&] {
-      if (exodus) exodus->close();
-      if (history) history->close();
-      if (publish) results.publish();
-    });
-  };
+}
 
-  auto write_outputs = [&](bool last) {
-    const std::int64_t step = sim.state().step;
-    const bool frame = output.exodus_every > 0 && (step % output.exodus_every == 0 || last);
-    const bool row = output.history_every > 0 && (step % output.history_every == 0 || last);
-    if (!frame && !row) return;
-    sim.gather_outputs(frame, row);
-    std::string non_finite;  // a total that overflowed while every point's values stayed finite
-    on_root([&] {
-      if (frame) exodus->write_frame(sim.state().time, sim.output_state());
-      if (row) non_finite = history->write();
-    });
-    if (!row) return;
-    const int failing = comm.first_rank_with(!non_finite.empty());
-    if (failing >= 0)
-      throw NumericalError(fmt::format("non-finite {} in the history at step {}, time {:.6g} s (written as the last row)",
-                                       comm.broadcast(non_finite, failing), sim.state().step, sim.state().time));
-  };
+/// The frame and the row due at this step (on the schedule, or `force`d: the last step, a stop), each at most
+/// once per step.
+void Run::Impl::write_outputs(bool force) {
+  const OutputSpec& output = sim.problem().output;
+  const std::int64_t step = sim.state().step;
+  auto due = [&](std::int64_t every) { return every > 0 && (step % every == 0 || force); };
+  const bool frame = due(output.exodus_every) && frame_step != step;
+  const bool row = due(output.history_every) && row_step != step;
+  if (!frame && !row) return;
+  sim.gather_outputs(frame, row);
+  if (frame) frame_step = step;
+  if (row) row_step = step;
+  std::string non_finite;  // a total that overflowed while every point's values stayed finite
+  if (row && history && !options.write_files) non_finite = history->write();
+  on_root([&] {
+    if (frame) exodus->write_frame(sim.state().time, sim.output_state());
+    if (row) non_finite = history->write();
+  });
+  if (!row) return;
+  const int failing = comm.first_rank_with(!non_finite.empty());
+  if (failing >= 0)
+    throw NumericalError(fmt::format("non-finite {} in the history at step {}, time {:.6g} s (written as the last row)",
+                                     comm.broadcast(non_finite, failing), sim.state().step, sim.state().time));
+}
 
-  // Checkpoints: the newest output.checkpoint_keep this run wrote stay (an earlier run's are left alone).
-  std::vector<fs::path> checkpoints;
-  auto last_checkpoint = std::chrono::steady_clock::now();
-  std::int64_t checkpoint_step = restart ? sim.state().step : -1;
-  auto write_checkpoint = [&] {
-    const CheckpointData data = collect_checkpoint(sim);
-    const fs::path path = dir / fmt::format("checkpoint_{}.nc", sim.state().step);
-    on_root([&] {
-      write_checkpoint_file(path.string(), data);
-      checkpoints.push_back(path);
-      while (checkpoints.size() > static_cast<std::size_t>(output.checkpoint_keep)) {
-        fs::remove(checkpoints.front());
-        checkpoints.erase(checkpoints.begin());
-      }
-    });
-    log.line(fmt::format("checkpoint {} at step {}, t = {:.6g} s", path.filename().string(), sim.state().step,
-                              sim.state().time));
-    last_checkpoint = std::chrono::steady_clock::now();
-    checkpoint_step = sim.state().step;
-  };
-  // Due by steps, or by wall-clock time (distributed: when any rank's clock says so, looked at with the stop
-  // signals, so that every rank writes after the same step).
-  auto checkpoint_due = [&](bool looked) {
-    const std::int64_t step = sim.state().step;
-    if (output.checkpoint_every > 0 && step % output.checkpoint_every == 0) return true;
-    if (output.checkpoint_wall_time <= 0 || !looked) return false;
-    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count();
-    return comm.max(since >= output.checkpoint_wall_time ? 1.0 : 0.0) > 0;
-  };
-
-  Progress progress(options.progress && output.progress && root);
-  const StopSignals stop;
-  RunOutcome outcome;
-  try {
-    if (!restart) {
-      sim.initialize();
-      write_outputs(sim.total_steps() == 0);
+void Run::Impl::write_checkpoint() {
+  const OutputSpec& output = sim.problem().output;
+  const CheckpointData data = collect_checkpoint(sim);
+  const fs::path path = dir / fmt::format("checkpoint_{}.nc", sim.state().step);
+  on_root([&] {
+    write_checkpoint_file(path.string(), data);
+    checkpoints.push_back(path);
+    while (checkpoints.size() > static_cast<std::size_t>(output.checkpoint_keep)) {
+      fs::remove(checkpoints.front());
+      checkpoints.erase(checkpoints.begin());
     }
-    while (sim.state().step < sim.total_steps()) {
+  });
+  log.line(fmt::format("checkpoint {} at step {}, t = {:.6g} s", path.filename().string(), sim.state().step,
+                       sim.state().time));
+  last_checkpoint = std::chrono::steady_clock::now();
+  checkpoint_step = sim.state().step;
+}
+
+/// Due by steps, or by wall-clock time (distributed: when any rank's clock says so, looked at with the stop
+/// signals, so that every rank writes after the same step).
+bool Run::Impl::checkpoint_due(bool looked) {
+  const OutputSpec& output = sim.problem().output;
+  const std::int64_t step = sim.state().step;
+  if (output.checkpoint_every > 0 && step % output.checkpoint_every == 0) return true;
+  if (output.checkpoint_wall_time <= 0 || !looked) return false;
+  const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count();
+  return comm.max(since >= output.checkpoint_wall_time ? 1.0 : 0.0) > 0;
+}
+
+Run::Run(const Problem& problem, const RunOptions& options) : impl_(std::make_unique<Impl>(problem, options)) {
+  impl_->open_outputs();
+  if (options.catch_signals) impl_->stop.emplace();
+  if (!impl_->restart) {
+    try {
+      impl_->sim.initialize();
+      impl_->write_outputs(impl_->sim.total_steps() == 0);
+    } catch (const NumericalError& e) {
+      impl_->log.line(std::string("error: ") + e.what());
+      impl_->close_results(true);  // every frame written so far stays readable, in place
+      throw;
+    }
+  }
+}
+
+Run::~Run() {
+  if (impl_->finished) return;
+  try {  // abandoned before finish (an exception, a Python object let go): the results stay NAME.partial
+    impl_->close_results(false);
+  } catch (const std::exception&) {
+  }
+}
+
+Simulation& Run::simulation() { return impl_->sim; }
+const Simulation& Run::simulation() const { return impl_->sim; }
+bool Run::finished() const { return impl_->finished; }
+
+int Run::advance(std::int64_t last_step) {
+  Impl& run = *impl_;
+  Simulation& sim = run.sim;
+  if (run.finished) throw std::logic_error("this run has finished");
+  if (last_step > sim.total_steps())
+    throw std::out_of_range(fmt::format("step {} is after the run's end (step {})", last_step, sim.total_steps()));
+  const Communicator& comm = run.comm;
+  const OutputSpec& output = sim.problem().output;
+  int signal = 0;
+  try {
+    while (sim.state().step < last_step) {
       sim.step();
       // Every rank stops after the same step, whichever received the signal. Distributed, the ranks ask each
       // other every stop_check_interval steps: a reduction per step slows small runs on busy cores noticeably.
       const bool looked = comm.serial() || sim.state().step % stop_check_interval == 0;
-      if (comm.serial()) outcome.signal = stop.received();
-      else if (looked) outcome.signal = static_cast<int>(comm.max(stop.received()));
+      const int received = run.stop ? run.stop->received() : 0;
+      if (comm.serial()) signal = received;
+      else if (looked) signal = static_cast<int>(comm.max(received));
       const bool last = sim.state().step == sim.total_steps();
-      write_outputs(last || outcome.signal != 0);
-      if (output.checkpoints() && (checkpoint_due(looked) || last || outcome.signal != 0)) write_checkpoint();
-      progress.update(sim);
-      if (outcome.signal != 0) break;
+      run.write_outputs(last || signal != 0);
+      if (output.checkpoints() && run.options.write_files && (run.checkpoint_due(looked) || last || signal != 0))
+        run.write_checkpoint();
+      run.progress.update(sim);
+      if (signal != 0) break;
     }
   } catch (const NumericalError& e) {
-    log.line(std::string("error: ") + e.what());
-    close_results(true);  // every frame written so far stays readable, in place
+    run.log.line(std::string("error: ") + e.what());
+    run.close_results(true);  // every frame written so far stays readable, in place
     throw;
   }
-  progress.update(sim, true);
-  if (outcome.signal != 0) {
-    close_results(false);
-    const std::string name = outcome.signal == SIGINT ? "SIGINT" : outcome.signal == SIGTERM ? "SIGTERM" : "SIGUSR1";
-    std::string saved = fmt::format(
-        "stopped by {} after step {} of {}, t = {:.6g} s: results up to this step are in {} (in {}); the "
-        "previous run's results there are untouched",
-        name, sim.state().step, sim.total_steps(), sim.state().time, results.partial_names(), dir.string());
-    if (checkpoint_step == sim.state().step)
-      saved += fmt::format("; continue with: peridot run {} --restart {}", problem.deck_path,
-                           (dir / fmt::format("checkpoint_{}.nc", checkpoint_step)).string());
-    else
-      saved += "; no checkpoint (output.checkpoint is not set)";
-    log.line(saved);
-    if (!options.log && root) std::cerr << saved << '\n';
-    return outcome;
-  }
-  close_results(true);
-  log.line(fmt::format("done: {} steps to t = {:.6g} s in {:.2f} s", sim.state().step, sim.state().time,
-                       progress.elapsed()));
+  return signal;
+}
+
+void Run::finish() {
+  Impl& run = *impl_;
+  if (run.finished) throw std::logic_error("this run has finished");
+  const Simulation& sim = run.sim;
+  run.write_outputs(true);
+  run.progress.update(sim, true);
+  run.close_results(true);
+  run.log.line(fmt::format("done: {} steps to t = {:.6g} s in {:.2f} s", sim.state().step, sim.state().time,
+                           run.progress.elapsed()));
   if (const ShortRangeContact* contact = sim.short_range())
-    log.line(fmt::format("contact: {} pair-list builds in {:.2f} s, pair forces {:.2f} s; {} pairs listed at the end (rank 0)",
-                         contact->builds(), contact->build_seconds(), contact->compute_seconds(), contact->pairs()));
+    run.log.line(fmt::format("contact: {} pair-list builds in {:.2f} s, pair forces {:.2f} s; {} pairs listed at the end (rank 0)",
+                             contact->builds(), contact->build_seconds(), contact->compute_seconds(), contact->pairs()));
+}
+
+void Run::stopped(int signal) {
+  Impl& run = *impl_;
+  const Simulation& sim = run.sim;
+  run.progress.update(sim, true);
+  run.close_results(false);
+  const std::string name = signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "SIGUSR1";
+  std::string saved = fmt::format(
+      "stopped by {} after step {} of {}, t = {:.6g} s: results up to this step are in {} (in {}); the "
+      "previous run's results there are untouched",
+      name, sim.state().step, sim.total_steps(), sim.state().time, run.results.partial_names(), run.dir.string());
+  if (run.checkpoint_step == sim.state().step)
+    saved += fmt::format("; continue with: peridot run {} --restart {}", sim.problem().deck_path,
+                         (run.dir / fmt::format("checkpoint_{}.nc", run.checkpoint_step)).string());
+  else
+    saved += "; no checkpoint (output.checkpoint is not set)";
+  run.log.line(saved);
+  if (!run.options.log && run.comm.is_root()) std::cerr << saved << '\n';
+}
+
+const HistoryRows& Run::history() const {
+  static const HistoryRows none;
+  return impl_->history ? impl_->history->rows() : none;
+}
+
+RunOutcome run_problem(const Problem& problem, const RunOptions& options) {
+  Run run(problem, options);
+  RunOutcome outcome;
+  outcome.signal = run.advance(run.simulation().total_steps());
+  if (outcome.signal != 0) run.stopped(outcome.signal);
+  else run.finish();
   return outcome;
 }
 

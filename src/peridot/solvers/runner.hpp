@@ -2,8 +2,11 @@
 // Runs a validated problem to its end: writes the resolved deck and a run log, Exodus frames and CSV
 // history, and prints a progress line. Output starts only once the whole problem has been set up, so a
 // deck problem found at set-up (an empty node set) leaves nothing behind.
+#include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "peridot/deck/problem.hpp"
 #include "peridot/solvers/simulation.hpp"
@@ -14,6 +17,19 @@ struct RunOptions {
   bool progress = true;        ///< progress line on stderr (also off when output.progress is false)
   std::ostream* log = nullptr; ///< extra copy of the log (stdout by the CLI)
   std::string restart;         ///< a checkpoint to continue from (solvers/checkpoint.hpp); empty: from t = 0
+  /// false: nothing is written (no folder, log, Exodus file, CSV or checkpoint); the history rows are still kept
+  /// in memory (Run::history). A calibration loop runs a deck hundreds of times and reads its history.
+  bool write_files = true;
+  /// SIGINT, SIGTERM and SIGUSR1 stop the run after a step. The Python module leaves them to Python, which looks
+  /// for its own KeyboardInterrupt between steps.
+  bool catch_signals = true;
+};
+
+/// The history rows a run has written, kept in memory on rank 0: the CSV file's columns, and its rows one after
+/// another (values.size() = rows × columns.size()).
+struct HistoryRows {
+  std::vector<std::string> columns;
+  std::vector<double> values;
 };
 
 /// How a run that returned ended.
@@ -35,6 +51,39 @@ struct RunOutcome {
 /// checkpoint's step (from NAME.partial of a stopped run, else NAME), those on the schedule only: the files
 /// end up byte for byte those of a run never stopped.
 RunOutcome run_problem(const Problem& problem, const RunOptions& options);
+
+/// A run taken in pieces (what run_problem does, for a program that steps it, reads its fields and changes its
+/// loads between pieces: the Python module). The outputs are those of run_problem, byte for byte, however the
+/// steps are split.
+class Run {
+ public:
+  /// Sets the problem up (InputError, nothing written), opens the outputs, and writes step 0 (or restores
+  /// options.restart). Collective.
+  Run(const Problem& problem, const RunOptions& options);
+  /// A run not finished closes its results and leaves them as NAME.partial, as a stopped run does.
+  ~Run();
+  Run(const Run&) = delete;
+  Run& operator=(const Run&) = delete;
+
+  Simulation& simulation();
+  const Simulation& simulation() const;
+  /// Steps to `last_step` (at most simulation().total_steps()), writing the frames, rows and checkpoints due.
+  /// Returns 0, or the signal that stopped it after a step (options.catch_signals). NumericalError: the
+  /// results written so far are closed and moved into place, and the run is finished. Collective.
+  int advance(std::int64_t last_step);
+  /// Writes this step's frame and row unless written already, closes the results and moves them into place.
+  /// A run may finish before its end (Python's run to a time). Collective.
+  void finish();
+  /// After advance returned a signal: closes the results as NAME.partial and says how to restart.
+  void stopped(int signal);
+  bool finished() const;
+  /// The history rows written so far (rank 0; empty elsewhere and without history output).
+  const HistoryRows& history() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// The summary `peridot check` prints: points, bonds, memory, time steps.
 std::string describe_setup(const Simulation& simulation);
