@@ -416,6 +416,44 @@ TEST(Deck, PrintsSchemaFromTheTables) {
 // ---------------------------------------------------------------------------------------------
 // Bad decks: each at its exact position, with a message that says why
 
+// Parameters set from outside (the Python module): by key path, list entries by index, checked by the schema
+// as the file is; a path that cannot be followed is refused naming it.
+TEST(Deck, OverridesSetValuesByKeyPath) {
+  auto with = [](std::vector<DeckOverride> sets) { return parse_deck(deck_2d, "deck.yaml", test_dir(), sets); };
+  const Problem p = with({{"materials.glass.damage.critical_stretch", "2.5e-3"},
+                          {"boundary_conditions.1.velocity.y", "\"-5*t\""},
+                          {"solver.end_time", "50 us"},
+                          {"output.history", "{every: 7}"}});
+  EXPECT_DOUBLE_EQ(*p.materials[0].damage.critical_stretch, 2.5e-3);
+  EXPECT_EQ(p.boundary_conditions.back().value.text, "-5*t");
+  std::smatch end_time;
+  const std::string resolved = resolved_deck_yaml(p);
+  ASSERT_TRUE(std::regex_search(resolved, end_time, std::regex("end_time: (\\S+)")));
+  EXPECT_DOUBLE_EQ(std::stod(end_time[1]), 50e-6);
+  EXPECT_EQ(p.output.history_every, 7);
+
+  auto error_of = [&](std::vector<DeckOverride> sets) -> std::string {
+    try {
+      with(sets);
+    } catch (const InputError& e) {
+      std::string all;
+      for (const Diagnostic& d : e.diagnostics()) all += d.str() + "\n";
+      return all;
+    }
+    return "no error";
+  };
+  // A misspelt key is created, then refused by the schema as it would be in the file.
+  EXPECT_NE(error_of({{"materials.glass.damage.critical_strech", "1e-3"}}).find("unknown key 'critical_strech'"),
+            std::string::npos);
+  EXPECT_NE(error_of({{"materials.glass.density", "-1"}}).find("materials.glass.density"), std::string::npos);
+  EXPECT_NE(error_of({{"discretization.spacing.x", "1"}}).find("parameter 'discretization.spacing.x': 'discretization.spacing' is a value"),
+            std::string::npos);
+  EXPECT_NE(error_of({{"boundary_conditions.5.value", "1"}}).find("'boundary_conditions' is a list of 2, and '5' is not one of its indices"),
+            std::string::npos);
+  EXPECT_NE(error_of({{"solver.end_time", "[1, "}}).find("is not a YAML value"), std::string::npos);
+  EXPECT_NE(error_of({{"solver..end_time", "1"}}).find("an empty key"), std::string::npos);
+}
+
 TEST(Deck, UnknownKeyDidYouMean) {
   std::string deck = replaced(deck_2d, "critical_stretch: 1e-3", "critical_strech: 1e-3");
   std::vector<Diagnostic> errors = errors_of(deck);

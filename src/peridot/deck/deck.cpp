@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -840,6 +841,54 @@ struct Parser {
   }
 };
 
+/// Sets one DeckOverride in the loaded tree (InputError when its path runs into a scalar or past a list).
+void apply_override(YAML::Node root, const DeckOverride& set, const std::string& file) {
+  auto fail = [&](const std::string& why) {
+    throw InputError(SourcePos{file, 0, 0}, fmt::format("parameter '{}': {}", set.path, why));
+  };
+  YAML::Node value;
+  try {
+    value = YAML::Load(set.yaml);
+  } catch (const YAML::ParserException& e) {
+    fail(fmt::format("'{}' is not a YAML value: {}", set.yaml, e.msg));
+  }
+  std::vector<std::string> keys;
+  for (std::size_t begin = 0;;) {
+    const std::size_t dot = set.path.find('.', begin);
+    keys.push_back(set.path.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin));
+    if (dot == std::string::npos) break;
+    begin = dot + 1;
+  }
+  YAML::Node node = root;
+  std::string walked;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const std::string& key = keys[k];
+    if (key.empty()) fail("an empty key");
+    YAML::Node next;
+    if (node.IsSequence()) {
+      std::size_t index = 0;
+      const auto [end, ec] = std::from_chars(key.data(), key.data() + key.size(), index);
+      if (ec != std::errc() || end != key.data() + key.size() || index >= node.size())
+        fail(fmt::format("'{}' is a list of {}, and '{}' is not one of its indices", walked, node.size(), key));
+      if (k + 1 == keys.size()) {
+        node[index] = value;
+        return;
+      }
+      next.reset(node[index]);
+    } else if (node.IsMap() || !node.IsDefined() || node.IsNull()) {
+      if (k + 1 == keys.size()) {
+        node[key] = value;
+        return;
+      }
+      next.reset(node[key]);
+    } else {
+      fail(fmt::format("'{}' is a value, not a map or a list", walked));
+    }
+    node.reset(next);
+    walked += (walked.empty() ? "" : ".") + key;
+  }
+}
+
 void sort_by_position(std::vector<Diagnostic>& diagnostics) {
   std::stable_sort(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& a, const Diagnostic& b) {
     return std::pair(a.pos.line, a.pos.column) < std::pair(b.pos.line, b.pos.column);
@@ -848,7 +897,8 @@ void sort_by_position(std::vector<Diagnostic>& diagnostics) {
 
 }  // namespace
 
-Problem parse_deck(const std::string& yaml_text, const std::string& file_name_for_messages, const std::string& base_dir) {
+Problem parse_deck(const std::string& yaml_text, const std::string& file_name_for_messages, const std::string& base_dir,
+                   const std::vector<DeckOverride>& overrides) {
   DeckContext ctx(file_name_for_messages);
   Problem problem;
   problem.deck_path = file_name_for_messages;
@@ -859,6 +909,8 @@ Problem parse_deck(const std::string& yaml_text, const std::string& file_name_fo
   } catch (const YAML::ParserException& e) {
     throw InputError(ctx.pos(e.mark), "invalid YAML: " + e.msg);
   }
+  if (!overrides.empty() && !root.IsDefined()) root = YAML::Node(YAML::NodeType::Map);
+  for (const DeckOverride& set : overrides) apply_override(root, set, file_name_for_messages);
   Parser{ctx, problem.deck_dir, problem}.parse(root);
   sort_by_position(ctx.errors());
   if (!ctx.errors().empty()) throw InputError(std::move(ctx.errors()));
@@ -867,12 +919,12 @@ Problem parse_deck(const std::string& yaml_text, const std::string& file_name_fo
   return problem;
 }
 
-Problem load_deck(const std::string& path) {
+Problem load_deck(const std::string& path, const std::vector<DeckOverride>& overrides) {
   std::ifstream in(path);
   if (!in) throw InputError(SourcePos{path, 0, 0}, "cannot read the deck file");
   std::stringstream text;
   text << in.rdbuf();
-  return parse_deck(text.str(), path, fs::absolute(path).parent_path().string());
+  return parse_deck(text.str(), path, fs::absolute(path).parent_path().string(), overrides);
 }
 
 }  // namespace peridot
