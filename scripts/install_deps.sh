@@ -9,7 +9,8 @@ packages=(
   libexodusii-dev libnetcdf-dev
   libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev
   googletest libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev
-  python3-numpy python3-matplotlib python3-netcdf4 python3-meshio
+  pybind11-dev python3-dev
+  python3-numpy python3-matplotlib python3-netcdf4 python3-meshio python3-scipy
   clang libclang-rt-14-dev libomp-14-dev
 )
 

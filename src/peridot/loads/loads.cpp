@@ -1,6 +1,9 @@
 #include "peridot/loads/loads.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
 #include <numeric>
 
 namespace peridot {
@@ -44,6 +47,17 @@ Loads::Loads(const Problem& problem, const Discretization& disc, const std::vect
   for (const auto* fields : {&initial_displacement_, &initial_velocity_, &body_forces_})
     for (const Field& field : *fields) check_start(field.value, *field.points);
   for (const Prescribed& c : conditions_) check_start(c.value, *c.points);
+}
+
+void Loads::set_boundary_value(std::size_t k, const Expression& value, double t) {
+  ScalarFunction f(value);
+  for (std::uint32_t i : *conditions_.at(k).points) {
+    const double v = f(disc_.x(i, 0), disc_.x(i, 1), disc_.x(i, 2), t);
+    if (!std::isfinite(v))
+      throw InputError(value.pos, fmt::format("expression '{}' is {} at t = {:g} at ({:g}, {:g}, {:g}) m", value.text, v, t,
+                                              disc_.x(i, 0), disc_.x(i, 1), disc_.x(i, 2)));
+  }
+  conditions_[k].value = std::move(f);
 }
 
 void Loads::apply_initial_conditions(State& state) const {

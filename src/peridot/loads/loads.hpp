@@ -33,6 +33,12 @@ class Loads {
   /// Body force density at time t into b, every call (sized to the points).
   void evaluate_body_force(double t, VectorField& b) const;
 
+  /// Replaces the value of boundary condition k (deck order) from the next step on: a program that drives a run
+  /// in pieces (the Python module) changes a load between them. Its kind, component and node set stay. Throws
+  /// InputError at value.pos when the expression is malformed or not finite at some point at time t.
+  void set_boundary_value(std::size_t k, const Expression& value, double t);
+  std::size_t num_boundary_conditions() const { return conditions_.size(); }
+
   /// Per degree of freedom (3 per point): free or prescribed.
   const std::vector<DofKind>& dof_kinds() const { return dof_kind_; }
   /// The prescribed degrees of freedom (3·i + d), increasing.

@@ -88,6 +88,9 @@ class Run {
 /// The summary `peridot check` prints: points, bonds, memory, time steps.
 std::string describe_setup(const Simulation& simulation);
 
+/// The optional point fields (point_fields() registry, not FieldScope::always) this problem has and writes.
+std::vector<std::string> optional_exodus_fields(const Simulation& sim);
+
 /// Value of a probe field ("displacement_x", "damage", …; probe_field_names() in state/point_fields.hpp)
 /// at point i; throws std::out_of_range for a name that is not one.
 double point_field(const State& state, const std::string& field, std::size_t i);
