@@ -311,14 +311,28 @@ PYBIND11_MODULE(peridot, m) {
              throw py::key_error(fmt::format("no node set '{}'", name));
            },
            py::arg("node_set"), "the reaction force (N) on a node set at the current step")
-      .def("set_boundary_condition", [](PyRun& r, std::size_t index, const std::string& value) {
+      .def("set_boundary_condition", [](PyRun& r, const std::string& node_set, const std::string& component,
+                                        const std::string& value) {
              const auto& conditions = r.problem.boundary_conditions;
-             if (index >= conditions.size())
-               throw py::index_error(fmt::format("the deck has {} boundary conditions", conditions.size()));
-             peridot::Expression e{value, peridot::SourcePos{fmt::format("boundary_conditions.{}", index), 0, 0}, false};
-             r.sim().loads().set_boundary_value(index, e, r.sim().state().time);
+             const int axis = component.size() == 1 && component[0] >= 'x' && component[0] <= 'z' ? component[0] - 'x' : -1;
+             if (axis < 0) throw py::value_error(fmt::format("component '{}': give x, y or z", component));
+             const std::string where = fmt::format("boundary condition on {}, {}", node_set, component);
+             const peridot::Expression e{value, peridot::SourcePos{where, 0, 0}, false};
+             bool found = false;
+             for (std::size_t k = 0; k < conditions.size(); ++k)
+               if (conditions[k].node_set == node_set && conditions[k].component == axis) {
+                 r.sim().loads().set_boundary_value(k, e, r.sim().state().time);
+                 found = true;
+               }
+             if (found) return;
+             std::vector<std::string> known;
+             for (const peridot::BoundaryConditionSpec& bc : conditions)
+               known.push_back(fmt::format("({}, {})", bc.node_set, static_cast<char>('x' + bc.component)));
+             throw py::key_error(fmt::format("no boundary condition on node set '{}', component {}; the deck has: {}",
+                                             node_set, component, known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
            },
-           py::arg("index"), py::arg("value"),
-           "Replaces the value (an expression of x, y, z, t) of boundary condition `index` (deck order) from the next "
-           "step on; its kind, component and node set stay. Not recorded in checkpoints.");
+           py::arg("node_set"), py::arg("component"), py::arg("value"),
+           "Replaces the value (an expression of x, y, z, t; m or m/s) of the deck's boundary condition on this node "
+           "set and component ('x', 'y', 'z') from the next step on; its kind (displacement or velocity) stays. Not "
+           "recorded in checkpoints. Raises InputError for a malformed expression.");
 }
