@@ -26,7 +26,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const peridot::Mesh mesh = peridot::read_mesh(spec);
     for (int dimension : {3, 2}) {
       try {
-        (void)peridot::mesh_points(mesh, spec, dimension, 1e-3, "fuzz");
+        const peridot::MeshPoints points = peridot::mesh_points(mesh, spec, dimension, 1e-3, "fuzz");
+        (void)peridot::mesh_point_sets(mesh, points);  // node, side and element sets as points
       } catch (const peridot::InputError&) {
         // refused with a position: what a bad mesh should get
       }

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Writes the mesh fuzzer's seeds into the folder given: small Gmsh 4.1 (ASCII and binary) and Abaqus meshes of
-every element type the readers take, with element sets and physical groups, each prefixed by the format byte
+every element type the readers take, with element sets, node sets and physical groups, each prefixed by the format byte
 fuzz/mesh_fuzzer.cpp reads ('g' Gmsh, 'a' Abaqus). Needs meshio (python3-meshio)."""
 import os
 import sys
@@ -33,4 +33,11 @@ with open(os.path.join(folder, "seed_sets.inp"), "w") as out:
     out.write("a*Heading\n*Part, name=P\n*Node\n 1, 0., 0., 0.\n 2, 1., 0., 0.\n 3, 1., 1., 0.\n 4, 0., 1., 0.\n"
               " 5, 0., 0., 1.\n 6, 1., 0., 1.\n 7, 1., 1., 1.\n 8, 0., 1., 1.\n*Element, type=C3D8R, elset=BLOCK\n"
               "1, 1, 2, 3, 4,\n 5, 6, 7, 8\n*Elset, elset=ALL, generate\n 1, 1, 1\n*Elset, elset=BOTH\nALL, BLOCK\n"
+              "*Nset, nset=FACE\n 1, 4, 5, 8\n*Nset, nset=EVERY, generate\n 1, 8, 1\n*Nset, nset=JOINED\nFACE, EVERY\n"
               "*End Part\n*Instance, name=I, part=P\n*End Instance\n")
+# A Gmsh hexahedron with a physical volume and a physical surface on its face x = 0 (a node set).
+with open(os.path.join(folder, "seed_face_group.msh"), "w") as out:
+    out.write('g$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 10 "face"\n3 1 "solid"\n$EndPhysicalNames\n'
+              "$Entities\n0 0 1 1\n1 0 0 0 0 1 1 1 10 0\n1 0 0 0 1 1 1 1 1 0\n$EndEntities\n$Nodes\n1 8 1 8\n3 1 0 8\n"
+              + "".join(f"{i + 1}\n" for i in range(8)) + "".join(f"{x:g} {y:g} {z:g}\n" for x, y, z in cube)
+              + "$EndNodes\n$Elements\n2 2 1 2\n2 1 3 1\n1 1 4 8 5\n3 1 5 1\n2 1 2 3 4 5 6 7 8\n$EndElements\n")

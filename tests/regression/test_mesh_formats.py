@@ -4,7 +4,8 @@ tetrahedra (6 per cube) and prisms (2 per cube), each in Gmsh 4.1 ASCII, Gmsh 4.
 hexahedra also in Exodus II; and a 4 x 3 mm plate as quadrilaterals and triangles in 2D. For each file
 `peridot run` (one step) must give the element count as points, the total volume (24 mm³; 12 mm² x the
 1 mm thickness) and the centroid of the box to round-off, and every hexahedron file must give the motion of a
-short elastic run of the built-in box to round-off.
+short elastic run of the built-in box to round-off. A node set written by meshio into the Abaqus and Exodus files
+selects the elements that touch it.
 
 Exits 1 if a check fails. Runs on Debian's /usr/bin/python3 with numpy, netCDF4 and meshio (python3-meshio,
 installed by scripts/install_deps.sh).
@@ -147,6 +148,25 @@ def main():
                   f"{name}: 40 steps differ from the built-in box's by {difference:.3g} m")
             line += f"  40 steps: |u - u_built-in| <= {difference:.2g} m of {np.max(np.abs(u_reference)):.2g} m"
         print(line)
+    # Node sets written by meshio (Abaqus *NSET, Exodus node set): the face x = 0 selects the elements touching it,
+    # the column of NY x NZ hexahedra at x = 0, as a node set by shape does.
+    points, cells = box()
+    face = np.where(points[:, 0] == 0)[0]
+    mesh = meshio.Mesh(points, [("hexahedron", cells["hexahedron"])], point_sets={"left_face": face})
+    for suffix, file_format in [("inp", "abaqus"), ("e", "exodus")]:
+        path = os.path.join(args.work, "meshes", f"node_set.{suffix}")
+        mesh.write(path, file_format=file_format)
+        deck = os.path.join(args.work, "meshes", f"node_set_{suffix}.yaml")
+        with open(deck, "w") as f:
+            f.write(DECK_3D.format(source=f"mesh: {{file: node_set.{suffix}, scale: 1e-3}}", steps=1)
+                    + "node_sets:\n  face: {mesh_set: left_face}\n"
+                    + "  by_shape: {shape: {box: {min: [-1, -1, -1], max: [0.001, 1, 1]}}}\n")
+        result = subprocess.run([args.peridot, "check", deck], capture_output=True, text=True)
+        counts = dict(line.split()[2:4:1] for line in result.stdout.splitlines() if line.strip().startswith("node set"))
+        check(result.returncode == 0 and counts.get("face") == str(NY * NZ) and counts.get("by_shape") == str(NY * NZ),
+              f"node set of a meshio {file_format} file: {counts or result.stderr.strip()}, expected {NY * NZ} points")
+        print(f"node set left_face of a meshio {file_format} file: {counts.get('face')} points (by shape: "
+              f"{counts.get('by_shape')})")
     print(f"{len(files)} meshes, {failures} failures")
     sys.exit(1 if failures else 0)
 

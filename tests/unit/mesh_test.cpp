@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -116,11 +117,14 @@ struct HexBox {
   int split_x;  ///< elements with i < split_x go to block "left", the others to "right" (0: one block "box")
 };
 
-/// The box's nodes and each block's elements (0-based corner nodes in Exodus order), one block or two.
+/// The box's nodes and each block's elements (0-based corner nodes in Exodus order), one block or two, and the
+/// nodes of its face x = lo.x (written as a node set "left_face" or a Gmsh physical surface of that name).
 struct BoxMesh {
   std::vector<Vec3> nodes;
   std::vector<std::string> names;
   std::vector<std::vector<std::array<int, 8>>> blocks;
+  std::vector<int> left_face;  ///< 0-based nodes with i = 0
+  std::vector<std::array<int, 4>> left_quads;  ///< the faces of the elements with i = 0 on x = lo.x
 };
 
 BoxMesh box_mesh(const HexBox& box, int invert = -1) {
@@ -129,7 +133,10 @@ BoxMesh box_mesh(const HexBox& box, int invert = -1) {
   auto node = [&](int i, int j, int k) { return i + nx * (j + ny * k); };
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) m.nodes.push_back({box.lo.x + i * box.h, box.lo.y + j * box.h, box.lo.z + k * box.h});
+      for (int i = 0; i < nx; ++i) {
+        if (i == 0) m.left_face.push_back(node(i, j, k));
+        m.nodes.push_back({box.lo.x + i * box.h, box.lo.y + j * box.h, box.lo.z + k * box.h});
+      }
   m.names = box.split_x > 0 ? std::vector<std::string>{"left", "right"} : std::vector<std::string>{"box"};
   m.blocks.resize(m.names.size());
   for (int k = 0; k < box.n[2]; ++k)
@@ -138,6 +145,7 @@ BoxMesh box_mesh(const HexBox& box, int invert = -1) {
         std::array<int, 8> c = {node(i, j, k),     node(i + 1, j, k),     node(i + 1, j + 1, k),     node(i, j + 1, k),
                                 node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
         auto& block = m.blocks[box.split_x > 0 && i >= box.split_x ? 1 : 0];
+        if (i == 0) m.left_quads.push_back({c[0], c[3], c[7], c[4]});
         if (static_cast<int>(block.size()) == invert) std::rotate(c.begin(), c.begin() + 4, c.end());
         block.push_back(c);
       }
@@ -146,15 +154,16 @@ BoxMesh box_mesh(const HexBox& box, int invert = -1) {
 
 void check(int status) { ASSERT_GE(status, 0) << "libexodusii status " << status; }
 
-/// The box as Exodus II, with libexodusii. `topology` makes bad meshes.
-void write_exodus(const std::string& path, const BoxMesh& m, const char* topology = "HEX8") {
+/// The box as Exodus II, with libexodusii. `topology` makes bad meshes. With `sets`, a node set "left_face" and a
+/// side set "right_face" of the elements of the last block's last column (side 2, the face x = max).
+void write_exodus(const std::string& path, const BoxMesh& m, const char* topology = "HEX8", bool sets = false) {
   int word = sizeof(double), io_word = sizeof(double);
   const int exoid = ex_create(path.c_str(), EX_CLOBBER, &word, &io_word);
   ASSERT_GE(exoid, 0);
   const int nodes = static_cast<int>(m.nodes.size());
   int elements = 0;
   for (const auto& block : m.blocks) elements += static_cast<int>(block.size());
-  check(ex_put_init(exoid, "hex box", 3, nodes, elements, static_cast<int>(m.blocks.size()), 0, 0));
+  check(ex_put_init(exoid, "hex box", 3, nodes, elements, static_cast<int>(m.blocks.size()), sets ? 1 : 0, sets ? 1 : 0));
   std::vector<double> x, y, z;
   for (const Vec3& p : m.nodes) x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
   check(ex_put_coord(exoid, x.data(), y.data(), z.data()));
@@ -169,6 +178,31 @@ void write_exodus(const std::string& path, const BoxMesh& m, const char* topolog
   std::vector<char*> pointers;
   for (std::string& name : names) pointers.push_back(name.data());
   check(ex_put_names(exoid, EX_ELEM_BLOCK, pointers.data()));
+  if (sets) {
+    std::vector<int> face;
+    for (int node : m.left_face) face.push_back(node + 1);
+    check(ex_put_set_param(exoid, EX_NODE_SET, 1, static_cast<int>(face.size()), 0));
+    check(ex_put_set(exoid, EX_NODE_SET, 1, face.data(), nullptr));
+    char left[] = "left_face";
+    char* left_name[] = {left};
+    check(ex_put_names(exoid, EX_NODE_SET, left_name));
+    // The elements with the largest x centroid: the last column, numbered in block order from 1.
+    std::vector<int> side_elements, sides;
+    int number = 0;
+    double right = -1e300;
+    for (const auto& block : m.blocks)
+      for (const auto& element : block) right = std::max(right, m.nodes[element[1]].x);
+    for (const auto& block : m.blocks)
+      for (const auto& element : block) {
+        ++number;
+        if (m.nodes[element[1]].x == right) side_elements.push_back(number), sides.push_back(2);
+      }
+    check(ex_put_set_param(exoid, EX_SIDE_SET, 1, static_cast<int>(side_elements.size()), 0));
+    check(ex_put_set(exoid, EX_SIDE_SET, 1, side_elements.data(), sides.data()));
+    char right_face[] = "right_face";
+    char* right_name[] = {right_face};
+    check(ex_put_names(exoid, EX_SIDE_SET, right_name));
+  }
   check(ex_close(exoid));
 }
 
@@ -194,11 +228,17 @@ void write_abaqus(const std::string& path, const BoxMesh& m) {
       out << "\n";
     }
   }
-  out << "*Elset, elset=ALL, generate\n 1, " << number << ", 1\n*End Step\n";
+  out << "*Elset, elset=ALL, generate\n 1, " << number << ", 1\n";
+  // The face x = lo.x as a node set, in two *Nset sections of the same name (the second grows the first).
+  for (std::size_t k = 0; k < m.left_face.size(); ++k)
+    out << (k == 0 ? "*Nset, nset=Left_Face\n" : k == m.left_face.size() / 2 ? "\n*Nset, nset=LEFT_FACE\n" : k % 8 == 0 ? ",\n" : ", ")
+        << m.left_face[k] + 1;
+  out << "\n*End Step\n";
 }
 
 /// The box as a Gmsh 4.1 file, ASCII or binary: a volume entity and a physical group per block, all nodes in
-/// one block, and two quadrangles on a boundary surface (which the reader passes over).
+/// one block, and the quadrangles of the face x = lo.x on a boundary surface, its own physical group "left_face"
+/// (a node set).
 void write_gmsh(const std::string& path, const BoxMesh& m, bool binary) {
   std::ofstream out(path, std::ios::binary);
   auto size = [&](std::uint64_t v) {
@@ -218,13 +258,13 @@ void write_gmsh(const std::string& path, const BoxMesh& m, bool binary) {
   };
   out << "$MeshFormat\n4.1 " << (binary ? 1 : 0) << " 8\n";
   if (binary) integer(1);
-  out << "\n$EndMeshFormat\n$PhysicalNames\n" << m.blocks.size() << "\n";
+  out << "\n$EndMeshFormat\n$PhysicalNames\n" << m.blocks.size() + 1 << "\n2 10 \"left_face\"\n";
   for (std::size_t b = 0; b < m.blocks.size(); ++b) out << "3 " << b + 1 << " \"" << m.names[b] << "\"\n";
   out << "$EndPhysicalNames\n$Entities\n";
   size(0), size(0), size(1), size(m.blocks.size()), end_line();
-  integer(1);  // the boundary surface
+  integer(1);  // the boundary surface, physical group 10
   for (int i = 0; i < 6; ++i) number(0);
-  size(0), size(0), end_line();
+  size(1), integer(10), size(0), end_line();
   for (std::size_t b = 0; b < m.blocks.size(); ++b) {
     integer(static_cast<std::int32_t>(b) + 1);
     for (int i = 0; i < 6; ++i) number(0);
@@ -237,14 +277,14 @@ void write_gmsh(const std::string& path, const BoxMesh& m, bool binary) {
   for (std::uint64_t i = 0; i < n; ++i) size(i + 1), end_line();
   for (const Vec3& p : m.nodes) number(p.x), number(p.y), number(p.z), end_line();
   out << (binary ? "\n" : "") << "$EndNodes\n$Elements\n";
-  std::uint64_t elements = 2;
+  std::uint64_t elements = m.left_quads.size();
   for (const auto& block : m.blocks) elements += block.size();
   size(m.blocks.size() + 1), size(elements), size(1), size(elements), end_line();
   std::uint64_t tag = 0;
-  integer(2), integer(1), integer(3), size(2), end_line();  // two quadrangles of the bottom face
-  for (int q = 0; q < 2; ++q) {
+  integer(2), integer(1), integer(3), size(m.left_quads.size()), end_line();  // the quadrangles of the face x = lo.x
+  for (const auto& quad : m.left_quads) {
     size(++tag);
-    for (int i = 0; i < 4; ++i) size(static_cast<std::uint64_t>(m.blocks[0][q][i]) + 1);
+    for (int id : quad) size(static_cast<std::uint64_t>(id) + 1);
     end_line();
   }
   for (std::size_t b = 0; b < m.blocks.size(); ++b) {
@@ -373,6 +413,97 @@ TEST(MeshInput, ElementSetsAndPhysicalGroupsSelectLikeBlocks) {
     const std::string keys = block.empty() ? "" : ", block: " + block;
     const Problem p = parse_deck(deck("  box: {material: steel, mesh: {file: " + file + keys + "}}\n"), "mesh.yaml", folder);
     EXPECT_EQ(discretize(p).num_points(), count);
+  }
+}
+
+// Node sets of meshes: an element belongs to a node set's points when any of its nodes is in the set (the face
+// x = 0 selects the first column of elements), a side set or element set selects its elements; the same box in
+// each format selects the same points as a node set by shape, from both bodies or only the listed one.
+TEST(MeshNodeSets, MeshSetsSelectThePointsOfTheirElementsInEveryFormat) {
+  const BoxMesh box = box_mesh({{0, 0, 0}, 1, {8, 4, 3}, 5});
+  write_exodus(scratch("ns.e").string(), box, "HEX8", true);
+  write_gmsh(scratch("ns_ascii.msh").string(), box, false);
+  write_gmsh(scratch("ns_binary.msh").string(), box, true);
+  write_abaqus(scratch("ns.inp").string(), box);
+  const std::string folder = scratch("ns.e").parent_path().string();
+  auto sets_of = [&](const std::string& file, const std::string& node_sets) {
+    const Problem p = parse_deck(mesh_deck(scratch(file), ", scale: 1e-3") + "node_sets:\n" + node_sets, "mesh.yaml", folder);
+    Simulation sim(p);
+    // Each set's points by position (to 1e-9 m: the formats' centroids agree to round-off), sorted.
+    std::map<std::string, std::vector<std::array<long, 3>>> out;
+    for (const NodeSet& set : sim.node_sets())
+      for (std::uint32_t i : set.points) {
+        const Vec3 x = sim.discretization().x.get(i);
+        out[set.name].push_back({std::lround(x.x * 1e9), std::lround(x.y * 1e9), std::lround(x.z * 1e9)});
+      }
+    for (auto& [name, points] : out) std::sort(points.begin(), points.end());
+    return out;
+  };
+  const std::string by_shape =
+      "  face: {shape: {box: {min: [-1, -1, -1], max: [0.001, 1, 1]}}}\n"
+      "  far: {shape: {box: {min: [0.007, -1, -1], max: [1, 1, 1]}}}\n";
+  const auto expected = sets_of("ns.e", by_shape);
+  ASSERT_EQ(expected.at("face").size(), 12u);  // 4 × 3 elements in the column at x = 0
+  for (const char* file : {"ns.e", "ns_ascii.msh", "ns_binary.msh", "ns.inp"}) {
+    SCOPED_TRACE(file);
+    const bool exodus = std::string(file) == "ns.e";
+    const auto got = sets_of(file, "  face: {mesh_set: left_face}\n  face_of_left: {mesh_set: left_face, bodies: [left]}\n" +
+                                       std::string(exodus ? "  far: {mesh_set: right_face}\n" : ""));
+    EXPECT_EQ(got.at("face"), expected.at("face"));
+    EXPECT_EQ(got.at("face_of_left"), expected.at("face"));
+    if (exodus) {
+      EXPECT_EQ(got.at("far"), expected.at("far"));
+    }
+  }
+  // An element set (the Abaqus ALL, a Gmsh physical volume) is a node set of its points too.
+  EXPECT_EQ(sets_of("ns.inp", "  everything: {mesh_set: all}\n").at("everything").size(), 96u);
+  EXPECT_EQ(sets_of("ns_ascii.msh", "  lefts: {mesh_set: left}\n").at("lefts").size(), 60u);
+}
+
+TEST(MeshNodeSets, BadMeshSetsAreRefused) {
+  const BoxMesh box = box_mesh({{0, 0, 0}, 1, {8, 4, 3}, 5});
+  write_exodus(scratch("bad_ns.e").string(), box, "HEX8", true);
+  const std::string folder = scratch("bad_ns.e").parent_path().string();
+  auto error_of = [&](const std::string& text) -> std::string {
+    try {
+      Simulation sim(parse_deck(text, "mesh.yaml", folder));
+    } catch (const InputError& e) {
+      std::string all;
+      for (const Diagnostic& d : e.diagnostics()) all += d.str() + "\n";
+      return all;
+    }
+    return "no error";
+  };
+  const std::string bodies = mesh_deck(scratch("bad_ns.e"), ", scale: 1e-3");
+  EXPECT_NE(error_of(bodies + "node_sets:\n  face: {mesh_set: left_fac}\n")
+                .find("node_sets.face: the meshes of the bodies have no node, side or element set 'left_fac'; they have: "
+                      "left_face, right_face"),
+            std::string::npos);
+  // The face x = 0 touches no element of the right body.
+  EXPECT_NE(error_of(bodies + "node_sets:\n  face: {mesh_set: left_face, bodies: [right]}\n")
+                .find("mesh.yaml:13:3: error: node_sets.face: mesh set 'left_face' selects no point of its bodies"),
+            std::string::npos);
+  EXPECT_NE(error_of(deck(built_in_bodies) + "node_sets:\n  face: {mesh_set: left_face}\n").find("no body is read from a mesh"),
+            std::string::npos);
+  // An Abaqus *NSET naming a node no *NODE gives: at the *NSET's line.
+  {
+    std::ofstream(scratch("bad_ns.inp")) << "*Node\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n5, 0, 0, 1\n6, 1, 0, 1\n"
+                                            "7, 1, 1, 1\n8, 0, 1, 1\n*Element, type=C3D8\n1, 1, 2, 3, 4, 5, 6, 7, 8\n"
+                                            "*Nset, nset=grip\n1, 4, 99\n*Nset, nset=none\n";
+    const std::string one = "  box: {material: steel, mesh: {file: bad_ns.inp, scale: 1e-3}}\n";
+    const std::string message = error_of(deck(one));
+    EXPECT_NE(message.find("bad_ns.inp:12:1: error: " + scratch("bad_ns.inp").string() +
+                           ": node set 'GRIP' names node 99, which no *NODE gives"),
+              std::string::npos)
+        << message;
+  }
+  {
+    std::ofstream(scratch("empty_ns.inp")) << "*Node\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n5, 0, 0, 1\n"
+                                              "6, 1, 0, 1\n7, 1, 1, 1\n8, 0, 1, 1\n*Element, type=C3D8\n1, 1, 2, 3, 4, 5, 6, 7, 8\n"
+                                              "*Nset, nset=none\n";
+    const std::string message = error_of(deck("  box: {material: steel, mesh: {file: empty_ns.inp, scale: 1e-3}}\n"));
+    EXPECT_NE(message.find("empty_ns.inp:12:1: error: "), std::string::npos) << message;
+    EXPECT_NE(message.find("node set 'NONE' names no node"), std::string::npos) << message;
   }
 }
 

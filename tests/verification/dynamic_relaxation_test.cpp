@@ -44,8 +44,8 @@ Problem bar_problem(int nx, int n, int load_steps, std::string model = "lps", do
   p.bodies[0].shape->lo = {-L / 2, -H / 2, -H / 2};
   p.bodies[0].shape->hi = {L / 2, H / 2, H / 2};
   p.lattice_origin = {-L / 2, -H / 2, -H / 2};  // points at (i + ½)Δx from it
-  p.node_sets = {{"left", {}, testing::box_shape({-1, -1, -1}, {-L / 2 + grip, 1, 1}), {}, ""},
-                 {"right", {}, testing::box_shape({L / 2 - grip, -1, -1}, {1, 1, 1}), {}, ""}};
+  p.node_sets = {{"left", {}, testing::box_shape({-1, -1, -1}, {-L / 2 + grip, 1, 1}), {}, "", ""},
+                 {"right", {}, testing::box_shape({L / 2 - grip, -1, -1}, {1, 1, 1}), {}, "", ""}};
   const std::string e = std::to_string(strain), contraction = std::to_string(-nu * strain);
   using Kind = BoundaryConditionSpec::Kind;
   for (const char* grip_set : {"left", "right"}) {

@@ -78,7 +78,7 @@ double bar_wave_speed_ratio(const std::string& model, bool surface_correction) {
   s.parameters.set_boolean("surface_correction", surface_correction);
   Problem p = testing::box_problem(s);
   const double v0 = 1.0, ramp = 20e-6, c = std::sqrt(E / rho);
-  p.node_sets = {{"end", {}, testing::box_shape({-1, -1, -1}, {2 * s.spacing, 1, 1}), {}, ""}};
+  p.node_sets = {{"end", {}, testing::box_shape({-1, -1, -1}, {2 * s.spacing, 1, 1}), {}, "", ""}};
   p.boundary_conditions = {{{}, BoundaryConditionSpec::Kind::velocity, "end", 0,
                             Expression{std::to_string(v0) + " * min(t / " + std::to_string(ramp) + ", 1)", {}, true}}};
   p.solver.parameters.erase("num_steps");
@@ -233,8 +233,8 @@ TEST(EnergyBalance, ExternalWorkAccountsForBoundaryConditionsAndBodyForces) {
   s.cells[0] = 40;
   s.cells[1] = 20;
   Problem p = testing::box_problem(s);
-  p.node_sets = {{"left", {}, testing::box_shape({-1, -1, -1}, {2e-3, 1, 1}), {}, ""},
-                 {"right", {}, testing::box_shape({38e-3, -1, -1}, {1, 1, 1}), {}, ""}};
+  p.node_sets = {{"left", {}, testing::box_shape({-1, -1, -1}, {2e-3, 1, 1}), {}, "", ""},
+                 {"right", {}, testing::box_shape({38e-3, -1, -1}, {1, 1, 1}), {}, "", ""}};
   p.boundary_conditions = {
       {{}, BoundaryConditionSpec::Kind::displacement, "left", 0, Expression{"0", {}, false}},
       {{}, BoundaryConditionSpec::Kind::displacement, "left", 1, Expression{"1e-6 * sin(2e5 * t)", {}, true}},

@@ -168,8 +168,8 @@ TEST(LpsBar, ContractsLaterallyByPoissonRatio) {
   Problem p = testing::box_problem(s);
   const double L = s.cells[0] * s.spacing, H = s.cells[1] * s.spacing, grip = 3 * s.spacing;
   const double strain = 1e-3;
-  NodeSetSpec left{"left", {}, testing::box_shape({-1, -1, -1}, {grip, 1, 1}), {}, ""};
-  NodeSetSpec right{"right", {}, testing::box_shape({L - grip, -1, -1}, {1, 1, 1}), {}, ""};
+  NodeSetSpec left{"left", {}, testing::box_shape({-1, -1, -1}, {grip, 1, 1}), {}, "", ""};
+  NodeSetSpec right{"right", {}, testing::box_shape({L - grip, -1, -1}, {1, 1, 1}), {}, "", ""};
   p.node_sets = {left, right};
   // End displacements ramped over 20 µs, then held: u_x = ±ε L/2 about the centre.
   auto ramp = [&](double sign) {

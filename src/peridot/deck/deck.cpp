@@ -511,6 +511,15 @@ struct Parser {
       if (r.given("ids_file")) n.ids_file = resolve_file(r["ids_file"], r.path_of("ids_file"), true);
       n.bodies = r["bodies"].names;
       for (const std::string& body : n.bodies) check_reference(r["bodies"], r.path_of("bodies"), "body", body, bodies);
+      if (r.given("mesh_set")) {
+        n.mesh_set = r["mesh_set"].text;
+        const bool meshed = std::any_of(p.bodies.begin(), p.bodies.end(), [&](const BodySpec& body) {
+          return body.mesh && (n.bodies.empty() || std::find(n.bodies.begin(), n.bodies.end(), body.name) != n.bodies.end());
+        });
+        if (!meshed)
+          ctx.error(r["mesh_set"].pos, r.path_of("mesh_set"),
+                    n.bodies.empty() ? "no body is read from a mesh" : "none of its bodies is read from a mesh");
+      }
       p.node_sets.push_back(std::move(n));
     });
   }

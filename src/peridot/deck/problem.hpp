@@ -131,6 +131,8 @@ struct NodeSetSpec {
   std::optional<Shape> shape;  ///< points inside the shape (of the listed bodies, or of all)
   std::vector<std::string> bodies;  ///< restrict to these bodies; empty = all
   std::string ids_file;             ///< or: a text file of 0-based point ids (in input order)
+  /// or: a node set, side set or element set of the bodies' meshes (geometry/mesh.hpp, mesh_point_sets)
+  std::string mesh_set;
 };
 
 /// A scalar expression of x, y, z (and t where allowed), checked by muParser at parse time.

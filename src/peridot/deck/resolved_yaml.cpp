@@ -233,6 +233,8 @@ void emit_precracks_and_node_sets(YAML::Emitter& out, const Problem& p) {
       if (n.shape) {
         out << YAML::Key << "shape" << YAML::Value;
         emit_shape(out, *n.shape);
+      } else if (!n.mesh_set.empty()) {
+        out << YAML::Key << "mesh_set" << YAML::Value << n.mesh_set;
       } else {
         out << YAML::Key << "ids_file" << YAML::Value << n.ids_file;
       }

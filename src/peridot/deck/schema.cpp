@@ -302,7 +302,11 @@ std::vector<SectionSpec> make_sections() {
                {{.key = "shape", .type = VT::mapping, .description = "points inside this shape (see shape)", .required = true, .one_of = "source"},
                 {.key = "ids_file", .type = VT::text, .description = "text file of 0-based point ids; relative to the deck",
                  .required = true, .one_of = "source"},
-                {.key = "bodies", .type = VT::names, .description = "with shape: only points of these bodies (default all)"}}});
+                {.key = "mesh_set", .type = VT::text,
+                 .description = "a node set, side set or element set of the bodies' meshes: the points of its elements (of a node "
+                                "set: of the elements with a node in it)",
+                 .required = true, .one_of = "source"},
+                {.key = "bodies", .type = VT::names, .description = "with shape or mesh_set: only points of these bodies (default all)"}}});
   s.push_back({"initial_conditions[i]", "initial displacement or velocity, functions of x, y, z",
                with_node_set({{.key = "displacement", .type = VT::mapping, .description = "components (m)", .required = true, .one_of = "kind"},
                               {.key = "velocity", .type = VT::mapping, .description = "components (m/s)", .required = true, .one_of = "kind"}},

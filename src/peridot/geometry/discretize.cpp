@@ -178,6 +178,7 @@ Discretization discretize(const Problem& problem) {
   std::vector<Diagnostic> errors;
   check_size(problem);
   std::map<std::string, Mesh> meshes;
+  std::vector<Discretization::MeshSet> mesh_sets;
   for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
     const BodySpec& body = problem.bodies[b];
     const std::size_t before = raw.size();
@@ -190,6 +191,12 @@ Discretization discretize(const Problem& problem) {
           mesh_points(meshes.at(key), *body.mesh, problem.dimension, problem.cross_section(), body.name);
       for (std::size_t i = 0; i < points.x.size(); ++i)
         raw.push_back({points.x[i], points.volume[i], static_cast<std::int32_t>(b), 0});
+      for (MeshPointSet& set : mesh_point_sets(meshes.at(key), points)) {
+        Discretization::MeshSet& out = mesh_sets.emplace_back();
+        out.name = std::move(set.name);
+        out.block = static_cast<std::int32_t>(b);
+        for (std::size_t k : set.points) out.input_ids.push_back(static_cast<std::uint32_t>(before + k));
+      }
     } else {
       read_point_file(problem, body, static_cast<std::int32_t>(b), raw);
     }
@@ -232,6 +239,7 @@ Discretization discretize(const Problem& problem) {
     disc.block[k] = p.block;
     disc.input_id[k] = order[k];
   }
+  disc.mesh_sets = std::move(mesh_sets);
   return disc;
 }
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -237,8 +238,54 @@ MeshPoints mesh_points(const Mesh& mesh, const MeshSpec& spec, int dimension, do
                                              volume));
     points.x.push_back(m.centroid);
     points.volume.push_back(volume);
+    points.element.push_back(first[b] + e);
   }
   return points;
+}
+
+std::vector<MeshPointSet> mesh_point_sets(const Mesh& mesh, const MeshPoints& points) {
+  std::size_t element_count = 0;
+  for (const MeshBlock& block : mesh.blocks) element_count += block.size();
+  // point_of[element]: the body's point made of that element, or none.
+  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> point_of(element_count, none);
+  for (std::size_t k = 0; k < points.element.size(); ++k) point_of[points.element[k]] = k;
+  auto finish = [](std::vector<std::size_t>& selected) {
+    std::sort(selected.begin(), selected.end());
+    selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
+  };
+  std::vector<MeshPointSet> sets;
+  for (const auto* group : {&mesh.element_sets, &mesh.side_sets})
+    for (const MeshElementSet& set : *group) {
+      MeshPointSet out{set.name, {}};
+      for (std::size_t element : set.elements)
+        if (element < element_count && point_of[element] != none) out.points.push_back(point_of[element]);
+      finish(out.points);
+      sets.push_back(std::move(out));
+    }
+  if (mesh.node_sets.empty()) return sets;
+  std::vector<char> in_set(mesh.nodes.size());
+  for (const MeshNodeSet& set : mesh.node_sets) {
+    std::fill(in_set.begin(), in_set.end(), 0);
+    for (std::size_t node : set.nodes)
+      if (node < in_set.size()) in_set[node] = 1;
+    MeshPointSet out{set.name, {}};
+    std::size_t global = 0;
+    for (const MeshBlock& block : mesh.blocks) {
+      const auto n = static_cast<std::size_t>(corner_count(block.shape));
+      for (std::size_t e = 0; e < block.size(); ++e, ++global) {
+        if (point_of[global] == none) continue;
+        for (std::size_t i = 0; i < n; ++i)
+          if (in_set[static_cast<std::size_t>(block.connectivity[e * n + i])]) {
+            out.points.push_back(point_of[global]);
+            break;
+          }
+      }
+    }
+    finish(out.points);
+    sets.push_back(std::move(out));
+  }
+  return sets;
 }
 
 }  // namespace peridot

@@ -35,12 +35,21 @@ struct MeshElementSet {
   std::vector<std::size_t> elements;
 };
 
+/// A named group of nodes (an Exodus node set, an Abaqus *NSET, the nodes of a Gmsh physical group of a lower
+/// dimension than the elements: a boundary surface or curve), by node index.
+struct MeshNodeSet {
+  std::string name;
+  std::vector<std::size_t> nodes;
+};
+
 struct Mesh {
   std::string file;
   int dimension = 3;        ///< of the node coordinates
   std::vector<Vec3> nodes;  ///< unscaled, as in the file
   std::vector<MeshBlock> blocks;
   std::vector<MeshElementSet> element_sets;
+  std::vector<MeshNodeSet> node_sets;
+  std::vector<MeshElementSet> side_sets;  ///< Exodus side sets: the elements whose sides they list
 };
 
 /// An element's centroid and measure (volume of a solid, area of a 2D element). `valid` is false when the
@@ -56,7 +65,20 @@ ElementMeasure measure_element(ElementShape shape, std::span<const Vec3> corners
 struct MeshPoints {
   std::vector<Vec3> x;
   std::vector<double> volume;
+  std::vector<std::size_t> element;  ///< each point's element, by its index in the order of the blocks
 };
+
+/// The points of a body that a named set of its mesh selects, by index into MeshPoints (increasing).
+struct MeshPointSet {
+  std::string name;
+  std::vector<std::size_t> points;
+};
+
+/// Every node set, side set and element set of the mesh as sets of the body's points: an element set or side set
+/// selects the points of its elements; a node set the points of the elements with at least one node in it (for
+/// SPHERE elements, the points at its nodes), the rule Peridigm applies to node sets of meshes it converts. A set
+/// may select none of this body's points (it lies in another block).
+std::vector<MeshPointSet> mesh_point_sets(const Mesh& mesh, const MeshPoints& points);
 
 /// The mesh file of a spec, by its format's reader (below).
 Mesh read_mesh(const MeshSpec& spec);

@@ -1,7 +1,7 @@
-// Abaqus input files (.inp): *NODE, *ELEMENT (C3D8*, C3D4*, C3D6*; CPS4*, CPE4*, CPS3*, CPE3* in 2D) and
-// *ELSET, flat or inside one part (an instance placed where the part was drawn); every other keyword is passed over. An *ELEMENT section with elset= is a
-// block of that name; *ELSET (with or without GENERATE) is an element set. Names compare without case, as in
-// Abaqus. A problem is reported at its line of the file.
+// Abaqus input files (.inp): *NODE, *ELEMENT (C3D8*, C3D4*, C3D6*; CPS4*, CPE4*, CPS3*, CPE3* in 2D), *ELSET and
+// *NSET, flat or inside one part (an instance placed where the part was drawn); every other keyword is passed
+// over. An *ELEMENT section with elset= is a block of that name; *ELSET and *NSET (with or without GENERATE) are
+// element and node sets. Names compare without case, as in Abaqus. A problem is reported at its line of the file.
 #include <algorithm>
 #include <cctype>
 #include <fstream>
@@ -54,7 +54,7 @@ class Reader {
   Mesh read() {
     std::ifstream in(path_);
     if (!in) throw InputError(pos_, fmt::format("cannot open '{}'", path_));
-    enum class Section { none, node, element, elset, instance } section = Section::none;
+    enum class Section { none, node, element, set, instance } section = Section::none;
     std::size_t block = 0;
     bool generate = false;
     int parts = 0;
@@ -85,20 +85,20 @@ class Reader {
           MeshBlock b;
           b.shape = *shape;
           b.name = options.contains("ELSET") ? upper_case(options["ELSET"]) : fmt::format("ELEMENTS_{}", mesh_.blocks.size() + 1);
+          // elset= also makes an element set of that name, which *ELSET lines may name (as in Abaqus).
+          block_set_ = options.contains("ELSET") ? set_named(labels_[0], b.name) : no_set;
           mesh_.blocks.push_back(std::move(b));
           block = mesh_.blocks.size() - 1;
           section = Section::element;
         }
-        if (keyword == "*ELSET") {
-          if (!options.contains("ELSET")) fail("*ELSET without elset=");
-          const std::string name = upper_case(options["ELSET"]);  // a set named again grows, as in Abaqus
-          const auto known = std::find_if(mesh_.element_sets.begin(), mesh_.element_sets.end(),
-                                          [&](const MeshElementSet& s) { return s.name == name; });
-          current_set_ = static_cast<std::size_t>(known - mesh_.element_sets.begin());
-          if (known == mesh_.element_sets.end()) mesh_.element_sets.push_back({name, {}});
-          if (set_lines_.size() < mesh_.element_sets.size()) set_lines_.push_back(line_number_);
+        if (keyword == "*ELSET" || keyword == "*NSET") {
+          sets_ = &labels_[keyword == "*NSET"];
+          const std::string option = keyword.substr(1);
+          if (keyword == "*NSET" && options.contains("ELSET")) fail("*NSET, ELSET= is not read: list the set's nodes");
+          if (!options.contains(option)) fail(fmt::format("{} without {}=", keyword, upper_case(option)));
+          current_set_ = set_named(*sets_, upper_case(options[option]));
           generate = options.contains("GENERATE");
-          section = Section::elset;
+          section = Section::set;
         }
         continue;
       }
@@ -112,7 +112,7 @@ class Reader {
           break;
         }
         case Section::element: element_line(fields, block); break;
-        case Section::elset: elset_line(fields, generate); break;
+        case Section::set: set_line(fields, generate); break;
         case Section::instance: fail("an *INSTANCE moved or turned: not applied here; export the mesh flat");
         case Section::none: break;
       }
@@ -129,15 +129,27 @@ class Reader {
         }
         mesh_.blocks[b].connectivity[k] = static_cast<std::int64_t>(found->second);
       }
-    for (std::size_t s = 0; s < mesh_.element_sets.size(); ++s)
-      for (std::size_t& element : mesh_.element_sets[s].elements) {
-        const auto found = element_index_.find(static_cast<std::int64_t>(element));
-        if (found == element_index_.end()) {
-          line_number_ = set_lines_[s];
-          fail(fmt::format("element set '{}' names element {}, which no *ELEMENT gives", mesh_.element_sets[s].name, element));
+    auto indices = [&](const LabelSet& set, const std::map<std::int64_t, std::size_t>& index, const char* what,
+                       const char* keyword) {
+      std::vector<std::size_t> out;
+      for (std::int64_t label : set.labels) {
+        const auto found = index.find(label);
+        if (found == index.end()) {
+          line_number_ = set.line;
+          fail(fmt::format("{} set '{}' names {} {}, which no {} gives", what, set.name, what, label, keyword));
         }
-        element = found->second;
+        out.push_back(found->second);
       }
+      return out;
+    };
+    for (const LabelSet& set : labels_[0]) mesh_.element_sets.push_back({set.name, indices(set, element_index_, "element", "*ELEMENT")});
+    for (const LabelSet& set : labels_[1]) {
+      if (set.labels.empty()) {
+        line_number_ = set.line;
+        fail(fmt::format("node set '{}' names no node", set.name));
+      }
+      mesh_.node_sets.push_back({set.name, indices(set, node_index_, "node", "*NODE")});
+    }
     mesh_.file = path_;
     mesh_.dimension = 3;
     return std::move(mesh_);
@@ -170,6 +182,7 @@ class Reader {
       const std::int64_t id = integer(fields[0]);
       if (element_index_.contains(id)) fail(fmt::format("element {} is given twice", id));
       element_index_[id] = element_count_++;
+      if (block_set_ != no_set) labels_[0][block_set_].labels.push_back(id);
       pending_ = corner_count(block.shape);
       k = 1;
     }
@@ -181,31 +194,48 @@ class Reader {
     }
   }
 
-  void elset_line(const std::vector<std::string>& fields, bool generate) {
-    MeshElementSet& set = mesh_.element_sets[current_set_];
+  // A line of an *ELSET or *NSET: element or node numbers, other sets of its kind by name, or with GENERATE
+  // first, last[, step].
+  void set_line(const std::vector<std::string>& fields, bool generate) {
+    LabelSet& set = (*sets_)[current_set_];
+    const char* what = sets_ == &labels_[0] ? "element" : "node";
     if (generate) {
-      if (fields.size() < 2) fail("*ELSET, GENERATE takes first, last[, step]");
+      if (fields.size() < 2) fail("GENERATE takes first, last[, step]");
       const std::int64_t from = integer(fields[0]), to = integer(fields[1]);
       const std::int64_t step = fields.size() > 2 && !fields[2].empty() ? integer(fields[2]) : 1;
-      if (step < 1 || to < from || (to - from) / step > 100000000) fail("*ELSET, GENERATE: first, last, step out of order");
-      for (std::int64_t e = from; e <= to; e += step) set.elements.push_back(static_cast<std::size_t>(e));
+      if (step < 1 || to < from || (to - from) / step > 100000000) fail("GENERATE: first, last, step out of order");
+      for (std::int64_t e = from; e <= to; e += step) set.labels.push_back(e);
       return;
     }
     for (const std::string& field : fields) {
       if (field.empty()) continue;
       if (std::isalpha(static_cast<unsigned char>(field[0]))) {  // another set, by name
         const std::string name = upper_case(field);
-        const auto other = std::find_if(mesh_.element_sets.begin(), mesh_.element_sets.end(),
-                                        [&](const MeshElementSet& s) { return s.name == name; });
-        if (other == mesh_.element_sets.end() || &*other == &set)
-          fail(fmt::format("element set '{}' is not defined above", field));
-        // Both hold element numbers until the end of the file, when every set becomes element indices.
-        const std::vector<std::size_t> copied = other->elements;
-        set.elements.insert(set.elements.end(), copied.begin(), copied.end());
+        const auto other = std::find_if(sets_->begin(), sets_->end(), [&](const LabelSet& s) { return s.name == name; });
+        if (other == sets_->end() || &*other == &set) fail(fmt::format("{} set '{}' is not defined above", what, field));
+        // Both hold numbers until the end of the file, when every set becomes indices.
+        const std::vector<std::int64_t> copied = other->labels;
+        set.labels.insert(set.labels.end(), copied.begin(), copied.end());
         continue;
       }
-      set.elements.push_back(static_cast<std::size_t>(integer(field)));
+      set.labels.push_back(integer(field));
     }
+  }
+
+  /// An *ELSET or *NSET as the file gives it: element or node numbers, and the line it starts at.
+  struct LabelSet {
+    std::string name;
+    std::vector<std::int64_t> labels;
+    int line = 0;
+  };
+  static constexpr std::size_t no_set = static_cast<std::size_t>(-1);
+
+  /// The set of that name, made here if new (a set named again grows, as in Abaqus).
+  std::size_t set_named(std::vector<LabelSet>& sets, const std::string& name) {
+    const auto known = std::find_if(sets.begin(), sets.end(), [&](const LabelSet& s) { return s.name == name; });
+    if (known != sets.end()) return static_cast<std::size_t>(known - sets.begin());
+    sets.push_back({name, {}, line_number_});
+    return sets.size() - 1;
   }
 
   std::string path_;
@@ -215,8 +245,11 @@ class Reader {
   std::map<std::int64_t, std::size_t> node_index_, element_index_;
   std::size_t element_count_ = 0;
   int pending_ = 0;  ///< nodes still expected for the element being read
-  std::size_t current_set_ = 0;  ///< the *ELSET whose lines are being read
-  std::vector<int> block_lines_, set_lines_;
+  std::vector<LabelSet> labels_[2];  ///< element sets, node sets
+  std::vector<LabelSet>* sets_ = nullptr;  ///< those of the *ELSET or *NSET whose lines are being read
+  std::size_t current_set_ = 0;
+  std::size_t block_set_ = no_set;  ///< the element set the *ELEMENT section being read adds to
+  std::vector<int> block_lines_;
 };
 
 }  // namespace

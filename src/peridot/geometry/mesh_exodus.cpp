@@ -1,6 +1,7 @@
 // Exodus II meshes through libexodusii: node coordinates and element blocks (SPHERE, TRI3, QUAD4, TET4, WEDGE6,
-// HEX8 under their usual spellings). A SPHERE element's volume is its attribute named "volume", or, unnamed, its
-// second attribute (Sierra and Peridigm write radius, then volume).
+// HEX8 under their usual spellings), node sets and side sets (unnamed: nodelist_<id>, surface_<id>). A SPHERE
+// element's volume is its attribute named "volume", or, unnamed, its second attribute (Sierra and Peridigm write
+// radius, then volume).
 #include <algorithm>
 #include <optional>
 
@@ -136,6 +137,39 @@ Mesh read_exodus_mesh(const std::string& path, const SourcePos& pos) {
       for (std::size_t e = 0; e < elements; ++e) block.sphere_volume[e] = values[e * attributes + volume_index];
     }
     mesh.blocks.push_back(std::move(block));
+  }
+
+  // Node sets (1-based node numbers) and side sets (1-based element numbers in block order, with the side of each).
+  std::size_t element_count = 0;
+  for (const MeshBlock& block : mesh.blocks) element_count += block.size();
+  for (const ex_entity_type type : {EX_NODE_SET, EX_SIDE_SET}) {
+    const bool nodes = type == EX_NODE_SET;
+    const auto count = static_cast<std::size_t>(std::max<std::int64_t>(nodes ? init.num_node_sets : init.num_side_sets, 0));
+    if (count == 0) continue;
+    std::vector<std::int64_t> set_ids(count);
+    file.check(ex_get_ids(file.id(), type, set_ids.data()), "ex_get_ids");
+    const std::vector<std::string> set_names = file.names(type, count);
+    for (std::size_t s = 0; s < count; ++s) {
+      const std::string name =
+          set_names[s].empty() ? fmt::format("{}_{}", nodes ? "nodelist" : "surface", set_ids[s]) : set_names[s];
+      std::int64_t entries = 0, distribution = 0;
+      file.check(ex_get_set_param(file.id(), type, set_ids[s], &entries, &distribution), "ex_get_set_param");
+      if (entries <= 0)
+        throw InputError(pos, fmt::format("'{}': {} set '{}' names no {}", path, nodes ? "node" : "side", name,
+                                          nodes ? "node" : "element side"));
+      std::vector<std::int64_t> members(static_cast<std::size_t>(entries)), sides(nodes ? 0 : members.size());
+      file.check(ex_get_set(file.id(), type, set_ids[s], members.data(), nodes ? nullptr : sides.data()), "ex_get_set");
+      const auto limit = static_cast<std::int64_t>(nodes ? node_count : element_count);
+      std::vector<std::size_t> indices;
+      for (std::int64_t member : members) {
+        if (member < 1 || member > limit)
+          throw InputError(pos, fmt::format("'{}': {} set '{}' names {} {}, and the file has {}", path,
+                                            nodes ? "node" : "side", name, nodes ? "node" : "element", member, limit));
+        indices.push_back(static_cast<std::size_t>(member - 1));
+      }
+      if (nodes) mesh.node_sets.push_back({name, std::move(indices)});
+      else mesh.side_sets.push_back({name, std::move(indices)});
+    }
   }
   return mesh;
 }

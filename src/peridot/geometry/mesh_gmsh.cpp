@@ -1,8 +1,10 @@
 // Gmsh meshes, format 4.1, ASCII or binary (the format Gmsh writes by default since version 4). Read by hand:
 // Debian's libgmsh brings the whole of Gmsh (OpenCASCADE, FLTK) to read one file, and the format is small and
 // documented. The elements of the highest dimension in the file are taken (the lines and faces Gmsh also saves
-// on boundaries are passed over); each entity block is a block named entity_<tag>, and each physical group of
-// that dimension an element set, named as in $PhysicalNames (else physical_<tag>).
+// on boundaries are points of no body); each entity block is a block named entity_<tag>, each physical group of
+// that dimension an element set, and each physical group of a lower dimension (a boundary surface, curve or
+// point) a node set of its elements' nodes, named as in $PhysicalNames (else physical_<tag>).
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
@@ -314,6 +316,31 @@ class Reader {
       const auto name = physical_names_.find({max_dimension_, tag});
       mesh_.element_sets.push_back(
           {name != physical_names_.end() ? name->second : fmt::format("physical_{}", tag), std::move(elements)});
+    }
+    // Physical groups of boundary faces, lines and points: node sets of their elements' nodes.
+    std::map<std::pair<int, std::int64_t>, std::vector<std::size_t>> group_nodes;
+    for (const EntityBlock& entity : entity_blocks_) {
+      if (entity.dimension >= max_dimension_) continue;
+      const auto groups = entity_groups_.find({entity.dimension, entity.entity});
+      if (groups == entity_groups_.end()) continue;
+      for (std::int64_t group : groups->second) {
+        std::vector<std::size_t>& nodes = group_nodes[{entity.dimension, std::abs(group)}];
+        for (std::uint64_t tag : entity.nodes) {
+          const auto found = node_index_.find(tag);
+          if (found == node_index_.end()) {
+            line_ = entity.line;
+            fail(fmt::format("an element of entity {} names node {}, which $Nodes does not give", entity.entity, tag));
+          }
+          nodes.push_back(found->second);
+        }
+      }
+    }
+    for (auto& [key, nodes] : group_nodes) {
+      const auto name = physical_names_.find(key);
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      mesh_.node_sets.push_back(
+          {name != physical_names_.end() ? name->second : fmt::format("physical_{}", key.second), std::move(nodes)});
     }
     return std::move(mesh_);
   }

@@ -1,7 +1,12 @@
 #include "peridot/loads/node_sets.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
+#include <set>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace peridot {
 
@@ -37,6 +42,39 @@ std::vector<std::uint32_t> select_in_shape(const NodeSetSpec& spec, const Proble
   return points;
 }
 
+/// The points of the bodies' mesh sets named spec.mesh_set: the name as written, else without case (Abaqus names
+/// are in capitals), in every body the spec takes.
+std::vector<std::uint32_t> select_from_mesh(const NodeSetSpec& spec, const Discretization& disc) {
+  std::vector<char> body_selected(disc.block_names.size(), spec.bodies.empty());
+  for (const std::string& body : spec.bodies)
+    for (std::size_t b = 0; b < disc.block_names.size(); ++b)
+      if (disc.block_names[b] == body) body_selected[b] = 1;
+  auto upper = [](std::string text) {
+    for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return text;
+  };
+  std::vector<const Discretization::MeshSet*> exact, folded;
+  std::set<std::string> known;
+  for (const Discretization::MeshSet& set : disc.mesh_sets) {
+    if (!body_selected[set.block]) continue;
+    known.insert(set.name);
+    if (set.name == spec.mesh_set) exact.push_back(&set);
+    else if (upper(set.name) == upper(spec.mesh_set)) folded.push_back(&set);
+  }
+  const auto& chosen = exact.empty() ? folded : exact;
+  if (chosen.empty())
+    throw InputError(spec.pos, fmt::format("node_sets.{}: the meshes of {} have no node, side or element set '{}'; they "
+                                           "have: {}",
+                                           spec.name, spec.bodies.empty() ? "the bodies" : "its bodies", spec.mesh_set,
+                                           known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
+  std::vector<std::uint32_t> storage_of(disc.num_points());
+  for (std::size_t i = 0; i < disc.num_points(); ++i) storage_of[disc.input_id[i]] = static_cast<std::uint32_t>(i);
+  std::vector<std::uint32_t> points;
+  for (const Discretization::MeshSet* set : chosen)
+    for (std::uint32_t id : set->input_ids) points.push_back(storage_of[id]);
+  return points;
+}
+
 }  // namespace
 
 std::vector<NodeSet> build_node_sets(const Problem& problem, const Discretization& disc) {
@@ -45,7 +83,9 @@ std::vector<NodeSet> build_node_sets(const Problem& problem, const Discretizatio
   for (const NodeSetSpec& spec : problem.node_sets) {
     NodeSet set{spec.name, {}};
     try {
-      set.points = spec.shape ? select_in_shape(spec, problem, disc) : read_ids(spec, disc);
+      set.points = spec.shape               ? select_in_shape(spec, problem, disc)
+                   : !spec.mesh_set.empty() ? select_from_mesh(spec, disc)
+                                            : read_ids(spec, disc);
     } catch (const InputError& e) {
       errors.insert(errors.end(), e.diagnostics().begin(), e.diagnostics().end());
       continue;
@@ -53,7 +93,10 @@ std::vector<NodeSet> build_node_sets(const Problem& problem, const Discretizatio
     std::sort(set.points.begin(), set.points.end());
     set.points.erase(std::unique(set.points.begin(), set.points.end()), set.points.end());
     if (set.points.empty())
-      errors.push_back({spec.pos, "node_sets." + spec.name + ": selects no point (check its shape against the bodies)"});
+      errors.push_back({spec.pos, "node_sets." + spec.name +
+                                      (spec.mesh_set.empty() ? ": selects no point (check its shape against the bodies)"
+                                                             : ": mesh set '" + spec.mesh_set + "' selects no point of " +
+                                                                   (spec.bodies.empty() ? "the bodies" : "its bodies"))});
     sets.push_back(std::move(set));
   }
   if (!errors.empty()) throw InputError(errors);

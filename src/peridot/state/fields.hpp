@@ -42,6 +42,14 @@ struct Discretization {
   std::vector<std::int32_t> block;     ///< body (block) index
   std::vector<std::uint32_t> input_id; ///< order of generation, before the space-filling-curve reorder
   std::vector<std::string> block_names;
+  /// The named sets of the bodies' meshes (node, side and element sets) as the points they select, by input id;
+  /// one entry per body and set (geometry/mesh.hpp, mesh_point_sets). Node sets refer to them by name (mesh_set).
+  struct MeshSet {
+    std::string name;
+    std::int32_t block = 0;
+    std::vector<std::uint32_t> input_ids;
+  };
+  std::vector<MeshSet> mesh_sets;
 };
 
 /// Bonds in compressed sparse rows: the bonds of point i are offsets[i] … offsets[i+1]−1. Every per-bond
