@@ -5,15 +5,18 @@
 //   peridot check deck.yaml    validate a deck and print what the run would be, without running it
 //   peridot info [--markdown]  every model, key, unit and default, from the schema the parser uses
 //   peridot info --model NAME [--markdown]  the documentation page of a material model
+//   peridot import-peridigm deck.yaml|deck.xml [-o peridot_deck.yaml]  translate a Peridigm deck, then check it
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "peridot/deck/deck.hpp"
 #include "peridot/deck/model_schema.hpp"
+#include "peridot/deck/peridigm_import.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/checkpoint.hpp"
 #include "peridot/solvers/runner.hpp"
@@ -31,6 +34,44 @@ int report(const peridot::InputError& e) {
   std::cerr << e.diagnostics().size() << (e.diagnostics().size() == 1 ? " error" : " errors")
             << "; nothing was run or written\n";
   return exit_input_error;
+}
+
+void write_atomically(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::path tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw peridot::OutputError("cannot write " + tmp.string());
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+/// import-peridigm: translate (a deck that cannot be translated: exit 2, nothing written), write the deck and the
+/// files it names, then check it as `peridot check` does. A translation that does not check keeps its files for
+/// editing and exits 2 with the errors at their lines of the translated deck.
+int import_peridigm(const std::string& deck, std::string output, bool root) {
+  if (!root) return 0;
+  if (output.empty()) {
+    std::filesystem::path p(deck);
+    output = (p.parent_path() / (p.stem().string() + ".peridot.yaml")).string();
+  }
+  const peridot::PeridigmImport result = peridot::import_peridigm(deck, output);
+  for (const auto& [path, text] : result.files) write_atomically(path, text);
+  write_atomically(output, result.deck);
+  for (const std::string& n : result.notes) std::cerr << "note: " << n << '\n';
+  std::cout << "wrote " << output;
+  for (const auto& file : result.files) std::cout << ", " << std::filesystem::path(file.first).filename().string();
+  std::cout << '\n';
+  try {
+    const peridot::Problem problem = peridot::load_deck(output);
+    peridot::Simulation simulation(problem, peridot::Communicator());
+    std::cout << output << ": valid\n" << peridot::describe_setup(simulation);
+  } catch (const peridot::InputError& e) {
+    std::cerr << "the translated deck does not check; it is kept for editing:\n";
+    return report(e);
+  }
+  return 0;
 }
 
 }  // namespace
@@ -67,6 +108,11 @@ int main(int argc, char** argv) {
     command->add_option("--max-memory", max_memory, "refuse decks whose points and bonds need more (4GiB, 500MB; default: the machine's memory)")
         ->transform(CLI::AsSizeValue(false));
 
+  std::string translated;
+  CLI::App* import = app.add_subcommand("import-peridigm", "translate a Peridigm deck (YAML or XML) into a Peridot deck and check it");
+  import->add_option("deck", deck, "the Peridigm deck (.yaml or .xml)")->required();
+  import->add_option("-o,--output", translated, "the Peridot deck to write (default: DECK.peridot.yaml beside the Peridigm deck)");
+
   CLI::App* info = app.add_subcommand("info", "list every model, key, unit and default");
   info->add_flag("--markdown", markdown, "print Markdown: docs/deck.md, or docs/models/NAME.md with --model");
   const std::vector<std::string_view> models = peridot::model_names();
@@ -90,6 +136,7 @@ int main(int argc, char** argv) {
       else peridot::print_model_page(std::cout, *peridot::find_model(model), markdown);
       return 0;
     }
+    if (import->parsed()) return import_peridigm(deck, translated, root);
     peridot::Problem problem = peridot::load_deck(deck);
     problem.memory_limit = static_cast<double>(max_memory);
     if (!output_dir.empty()) problem.output.directory = std::filesystem::absolute(output_dir).string();

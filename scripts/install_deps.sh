@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   cmake ninja-build g++ pkg-config
-  libyaml-cpp-dev libeigen3-dev libmuparser-dev
+  libyaml-cpp-dev libeigen3-dev libmuparser-dev libtinyxml2-dev
   libexodusii-dev libnetcdf-dev
   libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev
   googletest libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev
