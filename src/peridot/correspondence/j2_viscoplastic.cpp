@@ -23,12 +23,7 @@ double J2Viscoplastic::flow_stress(double eqps, double eqps_rate) const {
   return g * std::pow(1 + eqps_rate / reference_plastic_strain_rate, 1 / rate_exponent);
 }
 
-double J2Viscoplastic::thermal_factor(double temperature_rise) const {
-  if (!thermal.enabled) return 1;
-  const double homologous =
-      std::clamp(temperature_rise / (thermal.melting_temperature - thermal.reference_temperature), 0.0, 1.0);
-  return 1 - std::pow(homologous, thermal.exponent);
-}
+double J2Viscoplastic::thermal_factor(double temperature_rise) const { return thermal.factor(temperature_rise); }
 
 Mat3 J2Viscoplastic::update(const Mat3& tau, const Mat3& d, double dt, History& history) const {
   if (!(dt > 0)) return tau;
@@ -71,9 +66,7 @@ Mat3 J2Viscoplastic::update(const Mat3& tau, const Mat3& d, double dt, History& 
   history.equivalent_plastic_strain = eqps_old + eqps_increment;  // eq 56
   history.equivalent_plastic_strain_rate = eqps_increment / dt;
   history.flow_stress = G;
-  if (thermal.enabled)
-    history.temperature_rise +=
-        thermal.taylor_quinney * G * eqps_increment / (density * thermal.specific_heat);
+  history.temperature_rise += thermal.heating(G, eqps_increment, density);
   return S_new + pressure * Mat3::Identity();  // eq 51
 }
 
@@ -92,7 +85,8 @@ J2Viscoplastic J2Viscoplastic::aluminium_6061_t6() {
 
 std::vector<KeySpec> J2Viscoplastic::keys() {
   return {{.key = "yield_stress", .unit = Unit::pressure, .range = positive,
-           .description = "Y (Pa), quasi-static yield stress; j2_viscoplastic (required there)", .required = true},
+           .description = "Y (Pa), quasi-static yield stress; j2_viscoplastic and johnson_cook (its A; required there)",
+           .required = true},
           {.key = "hardening_exponent", .range = positive,
            .description = "n (-): G ∝ (1 + εp/ε0)^(1/n); j2_viscoplastic; omit for no strain hardening"},
           {.key = "reference_plastic_strain", .range = positive,
@@ -100,10 +94,10 @@ std::vector<KeySpec> J2Viscoplastic::keys() {
           {.key = "rate_exponent", .range = positive,
            .description = "m (-): G ∝ (1 + ε̇p/ε̇0)^(1/m); j2_viscoplastic; omit for rate independence"},
           {.key = "reference_strain_rate", .unit = Unit::rate, .range = positive,
-           .description = "ε̇0 (1/s), with rate_exponent; j2_viscoplastic"},
+           .description = "ε̇0 (1/s): j2_viscoplastic, with rate_exponent; johnson_cook, the rate of ε̇* = ε̇p/ε̇0 (default 1 /s)"},
           {.key = "thermal_softening", .type = ValueType::mapping,
            .description = "adiabatic heating and Johnson–Cook thermal softening (see materials.<name>.thermal_softening); "
-                          "j2_viscoplastic; omit for none"}};
+                          "j2_viscoplastic and johnson_cook; omit for none"}};
 }
 
 std::vector<SectionSpec> J2Viscoplastic::sections() {
@@ -119,7 +113,8 @@ std::vector<SectionSpec> J2Viscoplastic::sections() {
       {.key = "taylor_quinney_coefficient", .default_yaml = "0.9", .range = {0, 1, false, false},
        .description = "β (-): share of the plastic work that heats the point"}};
   return {{"materials.<name>.thermal_softening",
-           "adiabatic heating and Johnson–Cook thermal softening of constitutive_law: j2_viscoplastic; omit for none",
+           "adiabatic heating and Johnson–Cook thermal softening of constitutive_law: j2_viscoplastic or johnson_cook; "
+           "omit for none",
            std::move(thermal)}};
 }
 
@@ -150,15 +145,7 @@ J2Viscoplastic J2Viscoplastic::from_parameters(const Parameters& q, const Elasti
   law.rate_exponent = q.number_or("rate_exponent", std::numeric_limits<double>::infinity());
   law.reference_plastic_strain = q.number_or("reference_plastic_strain", 1);
   law.reference_plastic_strain_rate = q.number_or("reference_strain_rate", 1);
-  if (q.has("thermal_softening.taylor_quinney_coefficient")) {  // defaulted: there when the section is
-    ThermalSoftening& t = law.thermal;
-    t.enabled = true;
-    t.specific_heat = q.number("thermal_softening.specific_heat");
-    t.reference_temperature = q.number("thermal_softening.reference_temperature");
-    t.melting_temperature = q.number("thermal_softening.melting_temperature");
-    t.exponent = q.number("thermal_softening.exponent");
-    t.taylor_quinney = q.number("thermal_softening.taylor_quinney_coefficient");
-  }
+  law.thermal = ThermalSoftening::from_parameters(q);
   law.density = density;
   return law;
 }

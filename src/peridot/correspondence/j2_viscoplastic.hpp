@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "peridot/correspondence/constitutive.hpp"
+#include "peridot/correspondence/thermal_softening.hpp"
 #include "peridot/deck/problem.hpp"
 #include "peridot/deck/schema.hpp"
 
@@ -39,17 +40,6 @@ class MapReader;
 }  // namespace peridot
 
 namespace peridot::correspondence {
-
-/// Adiabatic heating with Johnson–Cook thermal softening of a j2_viscoplastic law (j2_viscoplastic.hpp):
-/// the flow stress is multiplied by 1 − T*^q, T* = (T − T_r)/(T_m − T_r), and T rises by β ΔW_p/(ρ c).
-struct ThermalSoftening {
-  bool enabled = false;
-  double specific_heat = 0;          ///< c (J/(kg K))
-  double reference_temperature = 0;  ///< T_r (K), the initial temperature
-  double melting_temperature = 0;    ///< T_m (K)
-  double exponent = 1;               ///< q (-)
-  double taylor_quinney = 0.9;       ///< β (-)
-};
 
 struct J2Viscoplastic {
   /// constitutive_law: j2_viscoplastic: its keys (required ones only with this law), the thermal_softening

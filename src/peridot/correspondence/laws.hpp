@@ -11,6 +11,7 @@
 
 #include "peridot/correspondence/hypoelastic.hpp"
 #include "peridot/correspondence/j2_viscoplastic.hpp"
+#include "peridot/correspondence/johnson_cook.hpp"
 
 namespace peridot::correspondence {
 
@@ -28,7 +29,8 @@ struct LawList {
 // clang-format off
 using ConstitutiveLaws = LawList<
     Hypoelastic,
-    J2Viscoplastic>;
+    J2Viscoplastic,
+    JohnsonCook>;
 // clang-format on
 
 using AnyLaw = ConstitutiveLaws::Any;

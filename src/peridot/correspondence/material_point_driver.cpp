@@ -9,6 +9,7 @@
 #include "peridot/core/error.hpp"
 #include "peridot/correspondence/hypoelastic.hpp"
 #include "peridot/correspondence/j2_viscoplastic.hpp"
+#include "peridot/correspondence/johnson_cook.hpp"
 
 namespace peridot::correspondence {
 
@@ -118,5 +119,6 @@ std::vector<MaterialPointSample<Law>> run_uniaxial_stress(const Law& law, const 
 
 PERIDOT_INSTANTIATE_DRIVER(Hypoelastic)
 PERIDOT_INSTANTIATE_DRIVER(J2Viscoplastic)
+PERIDOT_INSTANTIATE_DRIVER(JohnsonCook)
 
 }  // namespace peridot::correspondence

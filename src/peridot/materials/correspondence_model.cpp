@@ -100,9 +100,9 @@ ModelInfo CorrespondenceModel::info() {
     .summary = R"(A non-ordinary state-based (correspondence) solid: each point's family gives it a nonlocal deformation
 gradient F, a classical constitutive law turns the motion into a Cauchy stress, and the first Piola–Kirchhoff
 stress is mapped back to bond forces. The law works in the unrotated frame of the Flanagan–Taylor polar
-decomposition, so large rotations are objective. Two laws are available: hypoelastic (rate form of Hooke's
-law) and Foster's J2 viscoplasticity (power-law strain hardening and rate sensitivity, radial return with an
-implicit rate term), fitted in the reference to 6061-T6 aluminium. A weak bond spring on the non-affine part
+decomposition, so large rotations are objective. Three laws are available: hypoelastic (rate form of Hooke's
+law), Foster's J2 viscoplasticity (power-law strain hardening and rate sensitivity, radial return with an
+implicit rate term), fitted in the reference to 6061-T6 aluminium, and Johnson–Cook plasticity. A weak bond spring on the non-affine part
 of each bond's deformation controls the zero-energy (hourglass) modes.)",
     .equations = R"(Notation: ξ the reference bond, Y = ξ + u′ − u the deformed bond, ω the influence function times the
 partial-volume factor, V the neighbour volume; sums run over a point's bonds. Numbers (N) are those of
@@ -120,6 +120,11 @@ Foster, Silling & Chen (2010).
   factor Θ = 1 − T*^q, T* = (T_n − T_r)/(T_m − T_r) clamped to [0, 1], the temperature of the previous step;
   adiabatic heating T_{n+1} = T_n + β G Δεp/(ρc) (no conduction: heat moves √(κt) ≈ 0.06 mm in 50 µs in
   aluminium), T_0 = T_r; output `temperature` (K)
+- Johnson–Cook law: σ_y(εp, ε̇p, T) = (A + B εp^n)(1 + C ln ε̇*)(1 − T*^m), ε̇* = max(ε̇p/ε̇0, 1), A = yield_stress,
+  B, n, C = strain_hardening_coefficient, strain_hardening_exponent, strain_rate_coefficient, m the exponent of
+  `thermal_softening` (T of the previous step); elastic when |S^tr| ≤ √(2/3) σ_y(εp_n, 0); otherwise Δλ solves
+  |S^tr| − 2GΔλ − √(2/3) σ_y(εp_n + √(2/3)Δλ, √(2/3)Δλ/Δt) = 0 (implicit in εp and its rate), S = (|S^tr| − 2GΔλ)
+  S^tr/|S^tr|, Δεp = √(2/3)Δλ; pressure and heating as the J2 law
 - (23) σ = R τ Rᵀ; (24) P = det(F) σ F⁻ᵀ; (25) force state T⟨ξ⟩ = ω P K⁻¹ ξ; (4) f = Σ (T⟨ξ⟩ − T′⟨−ξ⟩) V
 - hourglass state T^hg⟨ξ⟩ = ω (c_hg/|ξ|) ((Y − Fξ)·n) n, n = Y/|Y|, c_hg = 18 C_HG K/(πδ⁴)
   (docs/algorithms.md §7); C_HG is hourglass_coefficient
@@ -131,7 +136,7 @@ Foster, Silling & Chen (2010).
 - (62) Green–Lagrange strain E = ½(FᵀF − I), an output only
 
 Energy bookkeeping (history CSV): strain_energy is the elastic energy Σ J (p²/(2K) + S:S/(4G)) V;
-dissipated_energy the inelastic work Σ ∫ J S : (dev(d) − Ṡ/(2G)) dt V (the plastic work of J2, 0 for the
+dissipated_energy the inelastic work Σ ∫ J S : (dev(d) − Ṡ/(2G)) dt V (the plastic work of the J2 and Johnson–Cook laws, 0 for the
 hypoelastic law); hourglass_work the work of the hourglass forces (springs and dashpots),
 −Σ ½(f_hg^n + f_hg^{n+1})·Δu V per step.
 With the kinetic energy they balance the external work. Exodus output adds deformation_gradient_*,

@@ -323,7 +323,7 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
         for (const auto& rc : symmetric_index) out[k++][i] = sigma(rc[0], rc[1]);
         out[k++][i] = von_mises(sigma);
         for (const auto& rc : symmetric_index) out[k++][i] = E(rc[0], rc[1]);
-        if constexpr (std::is_same_v<std::decay_t<decltype(block)>, CorrespondenceBlock<J2Viscoplastic>>)
+        if constexpr (requires { block.history[0].equivalent_plastic_strain; })  // the plastic laws
           state.history.plastic_strain[i] = block.history[i - range.begin].equivalent_plastic_strain;
       }
     }, any);
@@ -331,13 +331,15 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
   // T of the points with thermal softening, 0 elsewhere (they have no temperature).
   std::vector<double>& temperature = state.point_outputs["temperature"];
   temperature.assign(n, 0.0);
-  for (const AnyBlock& any : m.blocks) {
-    const auto* block = std::get_if<CorrespondenceBlock<J2Viscoplastic>>(&any);
-    if (!block || !block->law.thermal.enabled) continue;
-    const std::size_t begin = block->range.begin;
-    for (std::size_t i = begin; i < block->range.end; ++i)
-      temperature[i] = block->law.thermal.reference_temperature + block->history[i - begin].temperature_rise;
-  }
+  for (const AnyBlock& any : m.blocks)
+    std::visit([&](const auto& block) {
+      if constexpr (requires { block.law.thermal.enabled; }) {  // the laws with thermal softening
+        if (!block.law.thermal.enabled) return;
+        const std::size_t begin = block.range.begin;
+        for (std::size_t i = begin; i < block.range.end; ++i)
+          temperature[i] = block.law.thermal.reference_temperature + block.history[i - begin].temperature_rise;
+      }
+    }, any);
 }
 
 bool any_thermal_softening(const ModelContext& model) {
