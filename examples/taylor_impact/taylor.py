@@ -37,10 +37,25 @@ import peridot_results as pr  # noqa: E402
 D0 = 7.595e-3  # m
 
 
+# Johnson–Cook 6061-T6 (A, B, n, C, m from Uintah's JCPlastic6061T6Al.xml as read in the project's reference table;
+# ε̇0 = 1 /s, the common reading, where that file gives 1e-6 /s) in place of Foster's J2 fit; the thermal section
+# (its exponent is JC's m = 1.34) stays.
+JOHNSON_COOK = """constitutive_law: johnson_cook
+    yield_stress: 324 MPa
+    strain_hardening_coefficient: 114 MPa
+    strain_hardening_exponent: 0.42
+    strain_rate_coefficient: 0.002
+    reference_strain_rate: 1 1/s
+"""
+
+
 def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglass=None, thermal=True, viscosity=None,
-              contact="penalty"):
+              contact="penalty", law="j2_viscoplastic"):
     dx = D0 / across
     text = template
+    if law == "johnson_cook":
+        text = re.sub(r"constitutive_law: j2_viscoplastic\n(    [a-z_]+: [^\n]*\n)*?    reference_strain_rate: [^\n]*\n",
+                      JOHNSON_COOK, text, count=1)
     if viscosity is not None:  # hourglass dashpots, C_HV (the deck has none)
         text = re.sub(r"(\n( *)hourglass_coefficient: [^\n]*)", rf"\1\n\2hourglass_viscosity: {viscosity}", text, count=1)
     if not thermal:  # Foster's law as published: drop the thermal_softening section
@@ -163,6 +178,8 @@ def main():
     p.add_argument("--set", choices=sorted(SETS), default="ld5")
     p.add_argument("--out", default="taylor_runs")
     p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--law", choices=("j2_viscoplastic", "johnson_cook"), default="j2_viscoplastic",
+                   help="the constitutive law: Foster's J2 fit (the deck's) or Johnson–Cook 6061-T6")
     p.add_argument("--no-thermal", action="store_true",
                    help="without thermal softening (Foster's law as published); the deck's default has it")
     p.add_argument("--hourglass", type=float, help="hourglass coefficient C_HG for every shot (default: the deck's)")
@@ -193,7 +210,7 @@ def main():
         run_dir = os.path.join(os.path.abspath(a.out), name)
         os.makedirs(run_dir, exist_ok=True)
         deck = os.path.join(run_dir, "deck.yaml")
-        open(deck, "w").write(make_deck(template, across, hf, ld, speed, end, chg, not a.no_thermal, chv, a.contact))
+        open(deck, "w").write(make_deck(template, across, hf, ld, speed, end, chg, not a.no_thermal, chv, a.contact, a.law))
         if not (a.reuse and os.path.exists(os.path.join(run_dir, "output", "results.e"))):
             r = subprocess.run([a.peridot, "run", "-q", "-t", str(a.threads), deck], capture_output=True, text=True)
             if r.returncode != 0:
