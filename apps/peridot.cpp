@@ -36,17 +36,6 @@ int report(const peridot::InputError& e) {
   return exit_input_error;
 }
 
-void write_atomically(const std::filesystem::path& path, const std::string& text) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw peridot::OutputError("cannot write " + tmp.string());
-  }
-  std::filesystem::rename(tmp, path);
-}
-
 /// import-peridigm: translate (a deck that cannot be translated: exit 2, nothing written), write the deck and the
 /// files it names, then check it as `peridot check` does. A translation that does not check keeps its files for
 /// editing and exits 2 with the errors at their lines of the translated deck.
@@ -57,8 +46,8 @@ int import_peridigm(const std::string& deck, std::string output, bool root) {
     output = (p.parent_path() / (p.stem().string() + ".peridot.yaml")).string();
   }
   const peridot::PeridigmImport result = peridot::import_peridigm(deck, output);
-  for (const auto& [path, text] : result.files) write_atomically(path, text);
-  write_atomically(output, result.deck);
+  for (const auto& [path, text] : result.files) peridot::write_file_atomically(path, text);
+  peridot::write_file_atomically(output, result.deck);
   for (const std::string& n : result.notes) std::cerr << "note: " << n << '\n';
   std::cout << "wrote " << output;
   for (const auto& file : result.files) std::cout << ", " << std::filesystem::path(file.first).filename().string();

@@ -157,17 +157,6 @@ class ResultFiles {
   std::vector<std::string> names_;
 };
 
-/// Writes text to path through a temporary file and a rename, so the file is either absent or whole.
-void write_file_atomically(const fs::path& path, const std::string& text) {
-  fs::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, path);
-}
 
 /// Log lines go to the run log (flushed at once) and to the optional stream.
 /// Distributed, only rank 0 writes (enabled).
@@ -618,6 +607,17 @@ void Run::stopped(int signal) {
 const HistoryRows& Run::history() const {
   static const HistoryRows none;
   return impl_->history ? impl_->history->rows() : none;
+}
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+  fs::path tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, path);
 }
 
 RunOutcome run_problem(const Problem& problem, const RunOptions& options) {

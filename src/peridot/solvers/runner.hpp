@@ -88,6 +88,10 @@ class Run {
 /// The summary `peridot check` prints: points, bonds, memory, time steps.
 std::string describe_setup(const Simulation& simulation);
 
+/// Writes text to path through a temporary file and a rename, so the file is either absent or whole (the
+/// resolved deck; import-peridigm's deck and files). Throws std::runtime_error when it cannot.
+void write_file_atomically(const std::string& path, const std::string& text);
+
 /// The optional point fields (point_fields() registry, not FieldScope::always) this problem has and writes.
 std::vector<std::string> optional_exodus_fields(const Simulation& sim);
 
