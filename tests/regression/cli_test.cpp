@@ -335,6 +335,24 @@ TEST(Cli, CorrespondenceOneAndTwoThreadsGiveIdenticalBits) {
     EXPECT_NE(exodus.find(field), std::string::npos) << field;
 }
 
+// Johnson–Cook damage through the influence function (a notched bar pulled apart): bonds degrade and break,
+// points fail and fly free, and 1 and 2 threads still give identical bits; the bar did break.
+TEST(Cli, JohnsonCookDamageOneAndTwoThreadsGiveIdenticalBits) {
+  const fs::path one = expect_identical_with_one_and_two_threads("jc_damage_small.yaml", "jc_damage_threads");
+  const std::string exodus = read_file(one / "small.e");
+  EXPECT_NE(exodus.find("material_damage"), std::string::npos);
+  EXPECT_NE(exodus.find("fragment"), std::string::npos);
+  std::istringstream rows(read_file(one / "history.csv"));
+  std::string header, row, last;
+  std::getline(rows, header);
+  while (std::getline(rows, row)) last = row;
+  EXPECT_NE(header.find("broken_fraction"), std::string::npos) << header;
+  std::istringstream cells(last);
+  std::vector<double> values;
+  for (std::string cell; std::getline(cells, cell, ',');) values.push_back(std::stod(cell));
+  EXPECT_GT(values[8], 0.99) << "max_damage: some point lost every bond: " << last;
+}
+
 // A correspondence point whose deformation gradient inverts (a cube hit at 20 km/s): exit 3 naming step,
 // time and point, the history written so far kept.
 TEST(Cli, CorrespondenceInvertedDeformationExitsThree) {

@@ -22,6 +22,8 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/inelastic_small.yaml", "lps_plastic beside lps_viscoelastic, damage across the interface"),
     ("tests/regression/decks/mpi_correspondence_wall.yaml", "correspondence J2 with hourglass control on an anvil"),
     ("tests/regression/decks/mpi_symmetry_wall.yaml", "correspondence J2 on an anvil with contact: symmetry, released"),
+    ("tests/regression/decks/jc_damage_small.yaml",
+     "correspondence Johnson–Cook damage: bonds degrading and breaking across ranks, failed points, fragments"),
     ("tests/regression/decks/relaxation_notch.yaml", "dynamic relaxation in load steps, bonds breaking between equilibria"),
     ("tests/regression/decks/thermoviscoelastic_small.yaml",
      "thermoviscoelastic with WLF and thermal strain in a temperature gradient, relaxation with stepped loads"),

@@ -111,6 +111,32 @@ TEST(JohnsonCook, RateFactorIsOnePlusCLogOfTheRateAboveTheReferenceAndOneBelow) 
   }
 }
 
+// Simple shear at a constant rate γ̇ = 2000 /s: once plastic, every step's von Mises stress is the rate-dependent
+// flow stress (A + B εp^n)(1 + C ln(ε̇p/ε̇0)) at that step's own εp and ε̇p (the return is implicit in both), to the
+// root solver's tolerance; the plastic strain rate approaches γ̇/√3, the equivalent rate of simple shear.
+TEST(JohnsonCook, ShearAtConstantRateFollowsTheRateDependentFlowStress) {
+  const JohnsonCook law = aluminium(0.02);
+  const double shear_rate = 2000.0;
+  const auto samples = run_simple_shear(law, shear_rate, 1e-7, 2000);  // γ = 0.4
+  double worst = 0;
+  std::size_t plastic = 0;
+  for (std::size_t k = 1; k < samples.size(); ++k) {
+    const auto& h = samples[k].history;
+    if (h.equivalent_plastic_strain == samples[k - 1].history.equivalent_plastic_strain) continue;
+    ++plastic;
+    const double expected = law.flow_stress(h.equivalent_plastic_strain, h.equivalent_plastic_strain_rate);
+    worst = std::max(worst, std::abs(von_mises(samples[k].cauchy_stress) / expected - 1));
+  }
+  const auto& last = samples.back().history;
+  std::printf("JC shear at %g /s: %zu plastic steps, σ_vm vs σ_y(εp, ε̇p) within %.2e; final εp %.4f at ε̇p %.1f /s "
+              "(γ̇/√3 = %.1f), σ_vm %.2f MPa\n",
+              shear_rate, plastic, worst, last.equivalent_plastic_strain, last.equivalent_plastic_strain_rate,
+              shear_rate / std::sqrt(3.0), von_mises(samples.back().cauchy_stress) / 1e6);
+  EXPECT_GT(plastic, 1000u);
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_NEAR(last.equivalent_plastic_strain_rate, shear_rate / std::sqrt(3.0), 0.02 * shear_rate / std::sqrt(3.0));
+}
+
 TEST(JohnsonCook, ThermalSofteningUsesTheTemperatureOfTheStepBeforeAndHeatsByThePlasticWork) {
   JohnsonCook law = aluminium();
   law.thermal = {.enabled = true, .specific_heat = 896, .reference_temperature = 294, .melting_temperature = 925,

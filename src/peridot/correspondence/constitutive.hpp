@@ -120,8 +120,19 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
   constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
   std::size_t first_inverted = none, first_nonfinite = none;
   const std::size_t begin = range.begin, end = range.end;
+  const bool failures = !ctx.failed_point.empty();
 #pragma omp parallel for schedule(static) reduction(min : first_inverted, first_nonfinite)
   for (std::size_t i = begin; i < end; ++i) {
+    if (failures && ctx.failed_point[i]) {  // a free particle: its state stays, and it carries no stress
+      to_history[i - begin] = from_history[i - begin];
+      if (inelastic_work && !accumulate) inelastic_work[i] = 0;
+      to.rotation.set(i, from.rotation.get(i));
+      to.left_stretch.set(i, from.left_stretch.get(i));
+      to.unrotated_stress.set(i, from.unrotated_stress.get(i));
+      to.cauchy_stress.set(i, Mat3::Zero());
+      to.force_tensor.set(i, Mat3::Zero());
+      continue;
+    }
     const Mat3 F = kin.deformation_gradient.get(i);
     const Mat3 F_rate = kin.deformation_gradient_rate.get(i);
     // The mid-step F must be invertible too (L uses its inverse).
@@ -147,8 +158,12 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
     to.rotation.set(i, polar.rotation);
     to.left_stretch.set(i, polar.left_stretch);
     to.unrotated_stress.set(i, tau);
-    to.cauchy_stress.set(i, sigma);
-    to.force_tensor.set(i, first_piola_kirchhoff(F, sigma) * kin.shape_inverse.get(i));
+    // Damage coupled to the local stress (johnson_cook_damage.hpp): the force carries (1 − D) σ.
+    double integrity = 1;
+    if constexpr (requires { law.damage.degrades_stress(); history.damage; })
+      if (law.damage.degrades_stress()) integrity = 1 - history.damage;
+    to.cauchy_stress.set(i, integrity * sigma);
+    to.force_tensor.set(i, first_piola_kirchhoff(F, integrity * sigma) * kin.shape_inverse.get(i));
   }
   const std::size_t bad = std::min(first_inverted, first_nonfinite);
   if (bad == none) return;

@@ -271,7 +271,8 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
       const std::size_t j = bonds.neighbors[b];
       bond_offsets(x, up, vp, i, j, xi, du, dv);  // dv is read only with dashpots
       const std::size_t block_j = static_cast<std::size_t>(disc.block[j]);
-      const double wj = pair_weight(ctx, block_j, static_cast<std::size_t>(disc.block[i]), std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2])) * disc.volume[j];
+      double wj = pair_weight(ctx, block_j, static_cast<std::size_t>(disc.block[i]), std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2])) * disc.volume[j];
+      if (!ctx.bond_integrity.empty()) wj *= ctx.bond_integrity[b];  // the damage of both ends, as in ω_i
       add_bond(xi, du, dv, A + 9 * j, F + 9 * j, Fdot + 9 * j, block_j, ctx.weighted_volume[b], wj);
     };
     for (std::uint64_t b = bonds.offsets[i]; b < b_begin; ++b) other_block_bond(b);

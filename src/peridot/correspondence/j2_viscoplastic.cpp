@@ -66,8 +66,12 @@ Mat3 J2Viscoplastic::update(const Mat3& tau, const Mat3& d, double dt, History& 
   history.equivalent_plastic_strain = eqps_old + eqps_increment;  // eq 56
   history.equivalent_plastic_strain_rate = eqps_increment / dt;
   history.flow_stress = G;
+  const Mat3 tau_new = S_new + pressure * Mat3::Identity();  // eq 51
+  damage.accumulate(history.damage, eqps_increment, tau_new,
+                    log_rate_ratio(history.equivalent_plastic_strain_rate, reference_plastic_strain_rate),
+                    thermal.homologous(history.temperature_rise));
   history.temperature_rise += thermal.heating(G, eqps_increment, density);
-  return S_new + pressure * Mat3::Identity();  // eq 51
+  return tau_new;
 }
 
 J2Viscoplastic J2Viscoplastic::aluminium_6061_t6() {
@@ -97,7 +101,8 @@ std::vector<KeySpec> J2Viscoplastic::keys() {
            .description = "ε̇0 (1/s): j2_viscoplastic, with rate_exponent; johnson_cook, the rate of ε̇* = ε̇p/ε̇0 (default 1 /s)"},
           {.key = "thermal_softening", .type = ValueType::mapping,
            .description = "adiabatic heating and Johnson–Cook thermal softening (see materials.<name>.thermal_softening); "
-                          "j2_viscoplastic and johnson_cook; omit for none"}};
+                          "j2_viscoplastic and johnson_cook; omit for none"},
+          JohnsonCookDamage::key()};
 }
 
 std::vector<SectionSpec> J2Viscoplastic::sections() {
@@ -115,7 +120,8 @@ std::vector<SectionSpec> J2Viscoplastic::sections() {
   return {{"materials.<name>.thermal_softening",
            "adiabatic heating and Johnson–Cook thermal softening of constitutive_law: j2_viscoplastic or johnson_cook; "
            "omit for none",
-           std::move(thermal)}};
+           std::move(thermal)},
+          JohnsonCookDamage::section()};
 }
 
 void J2Viscoplastic::check(const MapReader& r, const Parameters& q, DeckContext& ctx) {
@@ -147,6 +153,7 @@ J2Viscoplastic J2Viscoplastic::from_parameters(const Parameters& q, const Elasti
   law.reference_plastic_strain_rate = q.number_or("reference_strain_rate", 1);
   law.thermal = ThermalSoftening::from_parameters(q);
   law.density = density;
+  law.damage = JohnsonCookDamage::from_parameters(q);
   return law;
 }
 

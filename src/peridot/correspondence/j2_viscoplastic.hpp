@@ -26,10 +26,14 @@
 //   ΔT_{n+1} = ΔT_n + β G_t Δεp / (ρ c)        (S : Δe^p = G_t Δεp for the radial return)
 // β the Taylor–Quinney coefficient. Θ uses T_n (explicit in temperature, as in explicit impact codes),
 // so the return mapping of a step is unchanged apart from the constant factor.
+//
+// Optional Johnson–Cook damage (johnson_cook_damage.hpp): D += Δεp/εf at the returned stress, with the
+// temperature of the step before.
 #include <string_view>
 #include <vector>
 
 #include "peridot/correspondence/constitutive.hpp"
+#include "peridot/correspondence/johnson_cook_damage.hpp"
 #include "peridot/correspondence/thermal_softening.hpp"
 #include "peridot/deck/problem.hpp"
 #include "peridot/deck/schema.hpp"
@@ -63,12 +67,16 @@ struct J2Viscoplastic {
   /// `thermal.enabled` is false. The heating needs the density.
   ThermalSoftening thermal;
   double density = 0;  ///< ρ (kg/m³)
+  /// Johnson–Cook damage (johnson_cook_damage.hpp), its ε̇* with ε̇0 = reference_plastic_strain_rate; off
+  /// unless the material has johnson_cook_damage.
+  JohnsonCookDamage damage;
 
   struct History {
     double equivalent_plastic_strain = 0;       ///< εp (-)
     double equivalent_plastic_strain_rate = 0;  ///< ε̇p of the last step (1/s)
     double flow_stress = 0;                     ///< G_t of the last plastic step, 0 if elastic (Pa)
     double temperature_rise = 0;                ///< T − T_r (K), adiabatic; 0 without thermal softening
+    double damage = 0;                          ///< D (-), 0 … 1; 0 without johnson_cook_damage
   };
 
   /// G(εp, ε̇p) (Pa), eqs 58–59, without the thermal factor.

@@ -15,21 +15,14 @@
 
 namespace peridot::correspondence {
 
-namespace {
-
-/// ln ε̇*, ε̇* = max(ε̇p/ε̇0, 1): 0 at and below the reference rate.
-double log_rate(double eqps_rate, double reference_rate) { return std::log(std::max(eqps_rate / reference_rate, 1.0)); }
-
-}  // namespace
-
 double JohnsonCook::flow_stress(double eqps, double eqps_rate) const {
   const double hardening = yield_stress + hardening_coefficient * std::pow(std::max(eqps, 0.0), hardening_exponent);
-  return hardening * (1 + rate_coefficient * log_rate(eqps_rate, reference_strain_rate));
+  return hardening * (1 + rate_coefficient * log_rate_ratio(eqps_rate, reference_strain_rate));
 }
 
 double JohnsonCook::failure_strain(double triaxiality, double eqps_rate, double temperature_rise) const {
-  return (damage.d1 + damage.d2 * std::exp(damage.d3 * triaxiality)) *
-         (1 + damage.d4 * log_rate(eqps_rate, reference_strain_rate)) * (1 + damage.d5 * thermal.homologous(temperature_rise));
+  return damage.failure_strain(triaxiality, log_rate_ratio(eqps_rate, reference_strain_rate),
+                               thermal.homologous(temperature_rise));
 }
 
 Mat3 JohnsonCook::update(const Mat3& tau, const Mat3& d, double dt, History& history) const {
@@ -64,14 +57,12 @@ Mat3 JohnsonCook::update(const Mat3& tau, const Mat3& d, double dt, History& his
   history.equivalent_plastic_strain = eqps_old + eqps_increment;
   history.equivalent_plastic_strain_rate = eqps_increment / dt;
   history.flow_stress = G;
-  if (damage.enabled && history.damage < 1) {
-    const double von_mises = std::sqrt(1.5) * S_new.norm();
-    const double triaxiality = von_mises > 0 ? pressure / von_mises : 0.0;
-    const double failure = failure_strain(triaxiality, history.equivalent_plastic_strain_rate, history.temperature_rise);
-    if (failure > 0) history.damage = std::min(1.0, history.damage + eqps_increment / failure);
-  }
+  const Mat3 tau_new = S_new + pressure * Mat3::Identity();
+  damage.accumulate(history.damage, eqps_increment, tau_new,
+                    log_rate_ratio(history.equivalent_plastic_strain_rate, reference_strain_rate),
+                    thermal.homologous(history.temperature_rise));
   history.temperature_rise += thermal.heating(G, eqps_increment, density);
-  return S_new + pressure * Mat3::Identity();
+  return tau_new;
 }
 
 std::vector<KeySpec> JohnsonCook::keys() {
@@ -83,7 +74,9 @@ std::vector<KeySpec> JohnsonCook::keys() {
        .description = "C (-), johnson_cook; ε̇* = max(ε̇p/ε̇0, 1); default 0 (rate independent)"}};
   // A (yield_stress), ε̇0 and the thermal_softening section mean the same as in j2_viscoplastic: its entries.
   for (const KeySpec& k : J2Viscoplastic::keys())
-    if (k.key == "yield_stress" || k.key == "reference_strain_rate" || k.key == "thermal_softening") keys.push_back(k);
+    if (k.key == "yield_stress" || k.key == "reference_strain_rate" || k.key == "thermal_softening" ||
+        k.key == "johnson_cook_damage")
+      keys.push_back(k);
   return keys;
 }
 
@@ -98,6 +91,7 @@ JohnsonCook JohnsonCook::from_parameters(const Parameters& q, const ElasticConst
   law.reference_strain_rate = q.number_or("reference_strain_rate", 1);
   law.thermal = ThermalSoftening::from_parameters(q);
   law.density = density;
+  law.damage = JohnsonCookDamage::from_parameters(q);
   return law;
 }
 

@@ -13,14 +13,13 @@
 //   radial return    S_{n+1} = (|S^tr| − 2μ Δλ) S^tr/|S^tr|,  Δεp = √(2/3) Δλ
 //   pressure         p_{n+1} = p_n + K tr(d) Δt,  τ = S + p I
 //   heating          T as the thermal_softening section says (thermal_softening.hpp), explicit in T.
-// Damage (when `damage.enabled`): D_{n+1} = D_n + Δεp/εf, capped at 1, with
-//   εf = [D1 + D2 exp(D3 η)][1 + D4 ln ε̇*][1 + D5 T*],  η = p/σ_vm the stress triaxiality of the returned stress,
-// evaluated at the step's end state (a negative or zero εf, possible with D3 < 0 far in compression, is taken as
-// 'no failure in this step'). D is history only: it does not yet weaken the stress or the bonds.
+// Damage (the section johnson_cook_damage): D_{n+1} = D_n + Δεp/εf at the step's returned stress, rate and
+// temperature (johnson_cook_damage.hpp, which also says how D acts).
 #include <string_view>
 #include <vector>
 
 #include "peridot/correspondence/constitutive.hpp"
+#include "peridot/correspondence/johnson_cook_damage.hpp"
 #include "peridot/correspondence/thermal_softening.hpp"
 #include "peridot/deck/problem.hpp"
 #include "peridot/deck/schema.hpp"
@@ -31,12 +30,6 @@ class MapReader;
 }  // namespace peridot
 
 namespace peridot::correspondence {
-
-/// The Johnson–Cook failure strain's constants, D1 … D5 (-).
-struct JohnsonCookDamage {
-  bool enabled = false;
-  double d1 = 0, d2 = 0, d3 = 0, d4 = 0, d5 = 0;
-};
 
 struct JohnsonCook {
   /// constitutive_law: johnson_cook: its keys (yield_stress, reference_strain_rate and thermal_softening are
@@ -54,7 +47,7 @@ struct JohnsonCook {
   double reference_strain_rate = 1;   ///< ε̇0 (1/s)
   ThermalSoftening thermal;           ///< T* and the heating; its exponent is Johnson–Cook's m
   double density = 0;                 ///< ρ (kg/m³), for the heating
-  JohnsonCookDamage damage;
+  JohnsonCookDamage damage;           ///< off unless the material has johnson_cook_damage
 
   struct History {
     double equivalent_plastic_strain = 0;       ///< εp (-)

@@ -64,6 +64,41 @@ namespace {
       i, id, disc.x(i, 0), disc.x(i, 1), disc.x(i, 2), intact, ratio, ctx.min_reciprocal_condition));
 }
 
+/// Whether the symmetric positive semi-definite K has λ_min/λ_max ≥ `threshold`. Since λ_max ≤ tr K and
+/// λ_min ≥ det K/(λ_mid λ_max) ≥ det K/(tr K)², λ_min/λ_max ≥ det K/(tr K)³: a K that passes this bound needs
+/// no eigenvalues (every point of a regular family does; K ≈ (tr K/3) I gives 1/27). The others get them in
+/// closed form (computeDirect: error about 1e-15 λ_max, far below the threshold).
+bool well_conditioned(const Mat3& K, double threshold) {
+  const double trace = K.trace();
+  if (trace > 0 && K.determinant() >= threshold * trace * trace * trace) return true;
+  Eigen::SelfAdjointEigenSolver<Mat3> eig;
+  eig.computeDirect(K, Eigen::EigenvaluesOnly);
+  const double lmin = eig.eigenvalues()(0), lmax = eig.eigenvalues()(2);
+  return lmax > 0 && lmin >= threshold * lmax;
+}
+
+/// K of point i from its intact bonds at their current weights, mirror bonds included while active.
+Mat3 shape_tensor_of(const CorrespondenceContext& ctx, std::size_t i) {
+  const Discretization& disc = *ctx.disc;
+  const BondList& bonds = *ctx.bonds;
+  const MirrorBonds& mirror = ctx.mirror;
+  const auto& x = disc.x;
+  Mat3 K = Mat3::Zero();
+  for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+    if (bonds.broken[b]) continue;
+    const std::size_t j = bonds.neighbors[b];
+    const Vec3d xi(x(j, 0) - x(i, 0), x(j, 1) - x(i, 1), x(j, 2) - x(i, 2));
+    K += ctx.weighted_volume[b] * xi * xi.transpose();
+  }
+  if (mirror.active && mirror.offsets.size() > i + 1 && mirror.planes[mirror.plane_of[i]].active)
+    for (std::uint64_t b = mirror.offsets[i]; b < mirror.offsets[i + 1]; ++b) {
+      const Vec3 offset = reflect_point(mirror.planes[mirror.plane_of[i]], disc.x.get(mirror.source[b])) - disc.x.get(i);
+      const Vec3d xi(offset.x, offset.y, offset.z);
+      K += mirror.weight[b] * disc.volume[mirror.source[b]] * xi * xi.transpose();
+    }
+  return K;
+}
+
 /// What the vectorised kinematics loop reads, by value (private copies: state/bond_runs.hpp says why).
 struct KinematicsRun {
   const double* x;
@@ -183,6 +218,11 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
     KinematicsRun run{x, up, vp, {}};
 #pragma omp for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
+      if (!ctx.failed_point.empty() && ctx.failed_point[i]) {
+        out.shape_inverse.set(i, Mat3::Zero());
+        out.deformation_gradient_rate.set(i, Mat3::Zero());
+        continue;
+      }
       // K (six components, symmetric), H = Σ ω V (u_j − u_i)⊗ξ and Ṅ; F = (K + H) K⁻¹ = I + H K⁻¹,
       // which keeps the digits of a small strain that N K⁻¹ with N = K + H would lose to cancellation.
       double K[6] = {}, H[9] = {}, Ndot[9] = {};
@@ -218,20 +258,9 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
       }
       Mat3 Km;
       Km << K[0], K[1], K[2], K[1], K[3], K[4], K[2], K[4], K[5];
-      // K is symmetric positive semi-definite; its extreme eigenvalues measure how far it is from singular.
-      // Since λ_max ≤ tr K and λ_min ≥ det K/(λ_mid λ_max) ≥ det K/(tr K)², λ_min/λ_max ≥ det K/(tr K)³:
-      // a point that passes this bound needs no eigenvalues (every point of a regular family does; K ≈
-      // (tr K/3) I gives 1/27). The others get them in closed form (computeDirect: error about
-      // 1e-15 λ_max, far below the threshold).
-      const double trace = K[0] + K[3] + K[5];
-      if (!(trace > 0 && Km.determinant() >= ctx.min_reciprocal_condition * trace * trace * trace)) {
-        Eigen::SelfAdjointEigenSolver<Mat3> eig;
-        eig.computeDirect(Km, Eigen::EigenvaluesOnly);
-        const double lmin = eig.eigenvalues()(0), lmax = eig.eigenvalues()(2);
-        if (!(lmax > 0) || !(lmin >= ctx.min_reciprocal_condition * lmax)) {
-          first_bad = std::min(first_bad, i);
-          continue;
-        }
+      if (!well_conditioned(Km, ctx.min_reciprocal_condition)) {
+        first_bad = std::min(first_bad, i);
+        continue;
       }
       const Mat3 Kinv = Km.inverse();
       const Mat3 F = Mat3::Identity() + Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(H) * Kinv;
@@ -241,25 +270,13 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
       out.deformation_gradient_rate.set(i, Fdot);
     }
   }
-  if (first_bad != std::numeric_limits<std::size_t>::max()) {
-    // Recompute K of that point alone for the message.
-    Mat3 K = Mat3::Zero();
-    for (std::uint64_t b = bonds.offsets[first_bad]; b < bonds.offsets[first_bad + 1]; ++b) {
-      if (bonds.broken[b]) continue;
-      const std::size_t j = bonds.neighbors[b];
-      const Vec3d xi(x[3 * j] - x[3 * first_bad], x[3 * j + 1] - x[3 * first_bad + 1],
-                     x[3 * j + 2] - x[3 * first_bad + 2]);
-      K += ctx.weighted_volume[b] * xi * xi.transpose();
-    }
-    if (mirrored && mirror.planes[mirror.plane_of[first_bad]].active)
-      for (std::uint64_t b = mirror.offsets[first_bad]; b < mirror.offsets[first_bad + 1]; ++b) {
-        const Vec3 offset = reflect_point(mirror.planes[mirror.plane_of[first_bad]], disc.x.get(mirror.source[b])) -
-                            disc.x.get(first_bad);
-        const Vec3d xi(offset.x, offset.y, offset.z);
-        K += mirror.weight[b] * disc.volume[mirror.source[b]] * xi * xi.transpose();
-      }
-    throw_singular_shape_tensor(ctx, first_bad, K);
-  }
+  // Recompute K of that point alone for the message.
+  if (first_bad != std::numeric_limits<std::size_t>::max())
+    throw_singular_shape_tensor(ctx, first_bad, shape_tensor_of(ctx, first_bad));
+}
+
+bool shape_tensor_invertible(const CorrespondenceContext& ctx, std::size_t i) {
+  return well_conditioned(shape_tensor_of(ctx, i), ctx.min_reciprocal_condition);
 }
 
 Mat3 mid_step_velocity_gradient(const Mat3& F_end, const Mat3& F_rate, double dt) {

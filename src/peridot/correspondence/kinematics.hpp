@@ -47,6 +47,12 @@ struct CorrespondenceContext {
   double min_reciprocal_condition = 1e-8;
   /// Bonds to mirror images across symmetry planes (mirror_bonds.hpp), in every sum while `active`.
   MirrorBonds mirror;
+  /// Damage through the influence function (johnson_cook_damage.hpp), kept by the solver at every commit;
+  /// both empty without it. Per bond: the factor 1 − max(D_i, D_j) that weighted_volume already carries,
+  /// for ω_j of a bond to another block. Per point: 1 for a failed point (D = 1, every bond broken), which
+  /// the kinematics and the stress step pass over: a free particle with no stress.
+  std::vector<double> bond_integrity;
+  std::vector<std::uint8_t> failed_point;
 };
 
 /// Bond weights for a discretization whose blocks are described by `blocks`
@@ -60,6 +66,10 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
 /// factor (dimensionless): the weight of weighted_volume, and of the state of the bond's other end.
 double pair_weight(const CorrespondenceContext& ctx, std::size_t own, std::size_t other, double xi);
 
+/// Whether point i's shape tensor, with its intact bonds at their current weights (mirror bonds included
+/// while active), passes the conditioning check of compute_kinematics.
+bool shape_tensor_invertible(const CorrespondenceContext& ctx, std::size_t i);
+
 /// Per-point kinematic fields.
 struct KinematicFields {
   TensorField shape_inverse;              ///< K⁻¹ (m⁻⁵)
@@ -71,6 +81,7 @@ struct KinematicFields {
 /// v^{n+1/2}, so that Ḟ = (F^{n+1} − F^n)/Δt exactly for a homogeneous motion.
 /// Throws NumericalError naming the lowest-numbered point (its index, input id and position) whose K is
 /// singular or ill-conditioned (fewer than three non-coplanar intact bonds), rather than producing NaNs.
+/// A failed point (ctx.failed_point) keeps its last F, with K⁻¹ = 0 and Ḟ = 0.
 void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
                         KinematicFields& out);
 /// The same for the points of `range` only (one correspondence block of a problem that mixes models); the

@@ -28,6 +28,10 @@ CorrespondenceModel::Params CorrespondenceModel::resolve(const MaterialSpec& spe
   block.stable_micromodulus =
       18 * (std::max(K, M / 1.8) + p.hourglass_coefficient * K) / (std::numbers::pi * std::pow(block.horizon, 4));
   block.stable_damping = correspondence::hourglass_damping(p.hourglass_viscosity, spec.density, K, block.horizon);
+  block.damage_breaks_bonds = std::visit([](const auto& law) {
+    if constexpr (requires { law.damage.degrades_bonds(); }) return law.damage.degrades_bonds();
+    else return false;
+  }, p.law);
   return p;
 }
 
@@ -42,8 +46,8 @@ bool has_key(const std::vector<KeySpec>& keys, std::string_view key) {
 void CorrespondenceModel::check(const MapReader& r, const Parameters& q, DeckContext& ctx) {
   if (r.given("damage"))
     ctx.error(r["damage"].key_pos, r.path_of("damage"),
-              "the correspondence model has no bond failure yet; remove damage (broken bonds would leave K, F "
-              "and the force state without a failure criterion)");
+              "the correspondence model breaks bonds through its law's johnson_cook_damage (the influence function "
+              "degrades with the damage of both ends), not by a critical stretch or energy; remove damage");
   if (!r.given("constitutive_law")) return;  // missing or not a listed law: reported
   const std::string chosen = r["constitutive_law"].text;
   std::vector<KeySpec> own;
@@ -125,6 +129,15 @@ Foster, Silling & Chen (2010).
   `thermal_softening` (T of the previous step); elastic when |S^tr| ≤ √(2/3) σ_y(εp_n, 0); otherwise Δλ solves
   |S^tr| − 2GΔλ − √(2/3) σ_y(εp_n + √(2/3)Δλ, √(2/3)Δλ/Δt) = 0 (implicit in εp and its rate), S = (|S^tr| − 2GΔλ)
   S^tr/|S^tr|, Δεp = √(2/3)Δλ; pressure and heating as the J2 law
+- `johnson_cook_damage` (j2_viscoplastic and johnson_cook): D_{n+1} = min(1, D_n + Δεp/εf),
+  εf = [D1 + D2 exp(D3 η)][1 + D4 ln ε̇*][1 + D5 T*], η = p/σ_vm of the returned stress (Johnson & Cook 1985).
+  coupling influence_function (default; Tupek, Rimoli & Radovitzky 2013): every bond's ω in K, F and the force
+  state is ω0 (1 − max(D_i, D_j)); the bond breaks for good when that reaches 0, so a point at D = 1 loses every
+  bond and flies free with no stress; a point whose remaining bonds can no longer form K fails too (D = 1), and a
+  failing point's stored elastic energy is added to dissipated_energy. Bonds touching a no_fail point keep their
+  weight. coupling local_stress: the force state uses (1 − D) σ and no bond breaks (the classical coupling the
+  paper shows to localise in one row of points). Output `material_damage` (D); `damage` stays the fraction of
+  broken bonds
 - (23) σ = R τ Rᵀ; (24) P = det(F) σ F⁻ᵀ; (25) force state T⟨ξ⟩ = ω P K⁻¹ ξ; (4) f = Σ (T⟨ξ⟩ − T′⟨−ξ⟩) V
 - hourglass state T^hg⟨ξ⟩ = ω (c_hg/|ξ|) ((Y − Fξ)·n) n, n = Y/|Y|, c_hg = 18 C_HG K/(πδ⁴)
   (docs/algorithms.md §7); C_HG is hourglass_coefficient
@@ -148,7 +161,10 @@ PMB solid of the same K, stiffened by the hourglass springs. With hourglass dash
 √(1 + ζ²) − ζ, ζ = (c_hv/c)/Δt_SA (central differences with damping ratio ζ on the highest mode: 0.81 for
 the Taylor example, aluminium at δ = 3.015Δx with C_HV = 0.05). It is an estimate, scaled by solver.safety_factor.)",
     .restrictions = R"(- 3D only.
-- No damage: bond failure inside K, F and the force state is not implemented (a deck with damage is refused).
+- Bonds break only through a law's johnson_cook_damage; a critical-stretch or energy `damage` section is refused.
+- Influence-function damage: a bond between two points that are both damaged but not failed keeps a weight of
+  1 − max(D); across an opened crack such bridging bonds can remain (the fragment count then sees one piece),
+  carrying the small force of their weight.
 - A correspondence body may share bonds with another correspondence body, but not with a body of another
   model: the run stops at set-up naming both bodies. Keep such bodies more than a horizon apart.
 - Rate form: an initial displacement produces no stress (the stress integrates the motion from t = 0).
@@ -157,6 +173,8 @@ the Taylor example, aluminium at δ = 3.015Δx with C_HV = 0.05). It is an estim
 - K⁻¹ is recomputed every step (the eigenvalue check refuses a point whose family is nearly flat, λ_min/λ_max
   below 10⁻⁸, with the point named).)",
     .further_references = {"Flanagan & Taylor, CMAME 62 (1987) 305-320 (incremental rotation)",
+                             "Johnson & Cook, Eng. Fract. Mech. 21 (1985) 31-48 (failure strain)",
+                             "Tupek, Rimoli & Radovitzky, CMAME 263 (2013) 20-26 (damage through the influence function)",
                              "Littlewood, Peridigm hourglass control (docs/algorithms.md §7)"},
     .example = R"(materials:
   aluminium:
@@ -173,7 +191,8 @@ the Taylor example, aluminium at δ = 3.015Δx with C_HV = 0.05). It is an estim
   };
   return {
       .name = name,
-      .description = "non-ordinary state-based (correspondence) solid: hypoelastic or J2 viscoplastic law, hourglass control",
+      .description = "non-ordinary state-based (correspondence) solid: hypoelastic, J2 viscoplastic or Johnson–Cook law, "
+                     "Johnson–Cook damage, hourglass control",
       .reference = "Foster, Silling & Chen, IJNME 81 (2010) 1242-1258",
       // In the order the resolved deck writes them: the law, its hourglass control, then the laws' keys.
       .keys = keys,

@@ -32,6 +32,9 @@ struct MaterialParams {
   /// Gc (J/m²) of the energy criterion (damage criterion: energy, damage/energy_failure.hpp), 0 without it;
   /// such a block has no critical stretch.
   double fracture_energy = 0;
+  /// A correspondence law's damage breaks this block's bonds (johnson_cook_damage, coupling
+  /// influence_function: correspondence/johnson_cook_damage.hpp), set by the model's resolve.
+  bool damage_breaks_bonds = false;
   /// Constant PMB micromodulus of the same bulk response (18K/(πδ⁴) in 3D, 12K′/(πhδ³) in 2D), used by
   /// the Silling–Askari stable time step estimate and the relaxation's fictitious density; a model may
   /// raise it in its resolve (correspondence: the P-wave modulus and the hourglass springs).

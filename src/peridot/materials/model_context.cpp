@@ -24,7 +24,7 @@ bool ModelContext::any_start_step() const {
 
 bool ModelContext::any_damage() const {
   return std::any_of(params.begin(), params.end(), [](const MaterialParams& p) {
-    return std::isfinite(p.critical_stretch) || p.fracture_energy > 0;
+    return std::isfinite(p.critical_stretch) || p.fracture_energy > 0 || p.damage_breaks_bonds;
   });
 }
 

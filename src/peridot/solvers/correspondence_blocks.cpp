@@ -82,6 +82,14 @@ struct CorrespondenceBlocks::Impl {
   VectorField mirror_force;            ///< per point: the force density of its mirror bonds (N/m³)
   Communicator comm;                   ///< the ranks that share the symmetry planes' release decision
   std::size_t owned = 0;               ///< this rank's points (the ghosts follow)
+  // Damage through the influence function (johnson_cook_damage.hpp); empty without it.
+  bool bond_damage = false;
+  std::vector<double> undamaged_weight;          ///< per bond: ω V_j of the context before any damage
+  std::vector<double> undamaged_mirror_weight;   ///< per mirror bond: ω_i, ω_j
+  std::vector<double> undamaged_mirror_partner;
+  std::vector<double> point_damage;              ///< per point (owned and ghost): D acting on the bonds
+
+  void update_damaged_bonds(double* dissipation);
 };
 
 CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelContext& model, const Halo* halo,
@@ -147,9 +155,100 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   m.hourglass_force.resize(n);
   m.previous_hourglass_force.resize(n);
   m.hourglass_work.assign(n, 0.0);
+  m.bond_damage = std::any_of(m.block_index.begin(), m.block_index.end(),
+                              [&](std::size_t b) { return model.params[b].damage_breaks_bonds; });
+  if (m.bond_damage) {
+    m.undamaged_weight = m.ctx.weighted_volume;
+    m.undamaged_mirror_weight = m.ctx.mirror.weight;
+    m.undamaged_mirror_partner = m.ctx.mirror.partner_weight;
+    m.ctx.bond_integrity.assign(m.ctx.weighted_volume.size(), 1.0);
+    m.ctx.failed_point.assign(n, 0);
+    m.point_damage.assign(n, 0.0);
+  }
+}
+
+// The bonds after a commit, from the committed damage (johnson_cook_damage.hpp): every bond i–j of a block
+// whose law degrades bonds gets ω0 (1 − max(D_i, D_j)) and breaks when that is 0; a point whose remaining
+// family can no longer form K (fewer than three non-coplanar bonds of weight) fails too (D = 1, all its bonds
+// break), repeated until no point fails: the failure of one point may isolate the next. A point that fails
+// releases its stored elastic energy, which is added to `dissipation` (null: not counted, at a restore), and
+// its stress is zeroed. Bonds touching a no_fail point keep their weight. Collective: the ghosts' damage is
+// exchanged, and every rank repeats while one has a new failure.
+void CorrespondenceBlocks::Impl::update_damaged_bonds(double* dissipation) {
+  BondList& bonds = *model->bonds;
+  const std::vector<std::uint8_t>& no_fail = model->no_fail;
+  std::fill(point_damage.begin(), point_damage.end(), 0.0);
+  for (const AnyBlock& any : blocks)
+    std::visit([&](const auto& block) {
+      if constexpr (requires { block.law.damage.degrades_bonds(); block.history[0].damage; })
+        if (block.law.damage.degrades_bonds())
+          for (std::size_t i = block.range.begin; i < block.range.end; ++i)
+            point_damage[i] = block.history[i - block.range.begin].damage;
+    }, any);
+  const auto protected_point = [&](std::size_t i) { return !no_fail.empty() && no_fail[i] != 0; };
+  while (true) {
+    if (halo) halo->exchange(point_damage);
+    for (const AnyBlock& any : blocks) {
+      const BlockRange range = std::visit([](const auto& block) { return block.range; }, any);
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = range.begin; i < range.end; ++i) {
+        ctx.failed_point[i] = point_damage[i] >= 1 && !protected_point(i) ? 1 : 0;
+        for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+          const std::size_t j = bonds.neighbors[b];
+          const double integrity = protected_point(i) || protected_point(j)
+                                       ? 1.0
+                                       : 1 - std::max(point_damage[i], point_damage[j]);
+          if (!(integrity > 0)) bonds.broken[b] = 1;
+          ctx.bond_integrity[b] = bonds.broken[b] ? 0.0 : integrity;
+          ctx.weighted_volume[b] = undamaged_weight[b] * ctx.bond_integrity[b];
+        }
+        MirrorBonds& mirror = ctx.mirror;
+        if (!mirror.offsets.empty())
+          for (std::uint64_t b = mirror.offsets[i]; b < mirror.offsets[i + 1]; ++b) {
+            const double integrity = 1 - std::max(point_damage[i], point_damage[mirror.source[b]]);
+            mirror.weight[b] = undamaged_mirror_weight[b] * std::max(integrity, 0.0);
+            mirror.partner_weight[b] = undamaged_mirror_partner[b] * std::max(integrity, 0.0);
+          }
+      }
+    }
+    // Points whose family can no longer form K.
+    std::vector<std::size_t> isolated;
+    for (const AnyBlock& any : blocks)
+      std::visit([&](const auto& block) {
+        if constexpr (requires { block.law.damage.degrades_bonds(); })
+          if (block.law.damage.degrades_bonds())
+            for (std::size_t i = block.range.begin; i < block.range.end; ++i)
+              if (!ctx.failed_point[i] && !protected_point(i) && !shape_tensor_invertible(ctx, i)) isolated.push_back(i);
+      }, any);
+    for (std::size_t i : isolated) point_damage[i] = 1;
+    for (AnyBlock& any : blocks)
+      std::visit([&](auto& block) {
+        if constexpr (requires { block.history[0].damage; })
+          for (std::size_t i : isolated)
+            if (i >= block.range.begin && i < block.range.end) block.history[i - block.range.begin].damage = 1;
+      }, any);
+    if (!comm.any(!isolated.empty())) break;
+  }
+  // Newly failed points: their stored energy is released, their stress gone.
+  for (std::size_t k = 0; k < blocks.size(); ++k)
+    std::visit([&](const auto& block) {
+      const MaterialParams& p = model->params[block_index[k]];
+      for (std::size_t i = block.range.begin; i < block.range.end; ++i) {
+        if (!ctx.failed_point[i] || committed.unrotated_stress.get(i).isZero(0.0)) continue;
+        const double released = elastic_energy_density(committed.unrotated_stress.get(i),
+                                                       kin.deformation_gradient.get(i).determinant(),
+                                                       p.elastic.bulk_modulus, p.elastic.shear_modulus);
+        if (dissipation) dissipation[i] += released;
+        committed.unrotated_stress.set(i, Mat3::Zero());
+      }
+    }, blocks[k]);
 }
 
 CorrespondenceBlocks::~CorrespondenceBlocks() = default;
+
+void CorrespondenceBlocks::restored() {
+  if (impl_->bond_damage) impl_->update_damaged_bonds(nullptr);
+}
 
 bool CorrespondenceBlocks::empty() const { return impl_->blocks.empty(); }
 
@@ -195,6 +294,7 @@ void CorrespondenceBlocks::commit(const VectorField& u, const VectorField& v, Ma
       for (std::size_t i = range.begin; i < range.end; ++i) dissipation[i] += m.inelastic_work[i];
     }, any);
   if (m.ctx.mirror.active) release_mirror_planes(v);
+  if (m.bond_damage) m.update_damaged_bonds(dissipation);
 
   // Work of the hourglass forces over the step, trapezoidal like the kinetic energy of velocity Verlet.
   const double* volume = m.model->disc->volume.data();
@@ -327,6 +427,16 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
           state.history.plastic_strain[i] = block.history[i - range.begin].equivalent_plastic_strain;
       }
     }, any);
+  if (any_material_damage(*m.model)) {
+    std::vector<double>& damage = state.point_outputs["material_damage"];
+    damage.assign(n, 0.0);
+    for (const AnyBlock& any : m.blocks)
+      std::visit([&](const auto& block) {
+        if constexpr (requires { block.history[0].damage; })
+          for (std::size_t i = block.range.begin; i < block.range.end; ++i)
+            damage[i] = block.history[i - block.range.begin].damage;
+      }, any);
+  }
   if (!any_thermal_softening(*m.model)) return;
   // T of the points with thermal softening, 0 elsewhere (they have no temperature).
   std::vector<double>& temperature = state.point_outputs["temperature"];
@@ -340,6 +450,17 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
           temperature[i] = block.law.thermal.reference_temperature + block.history[i - begin].temperature_rise;
       }
     }, any);
+}
+
+bool any_material_damage(const ModelContext& model) {
+  for (std::size_t b = 0; b < model.params.size(); ++b)
+    if (is_model<CorrespondenceModel>(model.params[b]) &&
+        std::visit([](const auto& law) {
+          if constexpr (requires { law.damage.enabled; }) return law.damage.enabled;
+          else return false;
+        }, model.model_params_of<CorrespondenceModel>(b).law))
+      return true;
+  return false;
 }
 
 bool any_thermal_softening(const ModelContext& model) {

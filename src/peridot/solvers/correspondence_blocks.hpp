@@ -49,6 +49,10 @@ class CorrespondenceBlocks {
   /// v). Collective when there are symmetry planes.
   void commit(const VectorField& u, const VectorField& v, MaterialHistory& history);
 
+  /// After a checkpoint's values are in state_arrays(): the bond weights of the restored damage
+  /// (johnson_cook_damage with the influence-function coupling). Collective.
+  void restored();
+
   /// The committed stress (R, V, τ), the laws' histories, the hourglass forces and work, and which symmetry
   /// planes still act: for checkpoints.
   void state_arrays(StateArrays& arrays);
@@ -82,5 +86,7 @@ class CorrespondenceBlocks {
 
 /// Whether a correspondence material of the problem has thermal_softening (then `temperature` is output).
 bool any_thermal_softening(const ModelContext& model);
+/// Whether some correspondence block's law has johnson_cook_damage (the `material_damage` output).
+bool any_material_damage(const ModelContext& model);
 
 }  // namespace peridot

@@ -48,6 +48,7 @@ std::vector<std::string> optional_exodus_fields(const Simulation& sim) {
         written = (correspondence && any_thermal_softening(sim.model())) || sim.problem().temperature.has_value();
         break;
       case FieldScope::damage: written = sim.model().any_damage(); break;
+      case FieldScope::material_damage: written = correspondence && any_material_damage(sim.model()); break;
     }
     if (written) fields.emplace_back(field.name);
   }

@@ -361,6 +361,7 @@ StateArrays Simulation::state_arrays() {
 
 void Simulation::restored() {
   exchange_partner_bonds();
+  if (correspondence_) correspondence_->restored();
   fragments_step_ = -1;
   temperature_time_ = std::numeric_limits<double>::quiet_NaN();
 }

@@ -34,6 +34,8 @@ std::vector<PointField> make_fields() {
   }
   fields.push_back({"temperature", false, "K", "T: the deck's temperature field, or a J2 law's with thermal softening (0 elsewhere)", S::thermal, false,
                     false, nullptr});
+  fields.push_back({"material_damage", false, "-", "D of a correspondence law's johnson_cook_damage (0 elsewhere)",
+                    S::material_damage, false, false, nullptr});
   fields.push_back({"fragment", false, "-", "fragment label: the smallest input id of its points", S::damage, true,
                     false, [](State& s) { return FieldStorage{nullptr, &s.fragment}; }});
   return fields;

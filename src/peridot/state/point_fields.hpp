@@ -19,6 +19,7 @@ enum class FieldScope : std::uint8_t {
   correspondence,  ///< a correspondence block (State::point_outputs)
   thermal,         ///< a temperature field, or a correspondence J2 law with thermal softening (State::point_outputs)
   damage,          ///< some material can break bonds
+  material_damage,  ///< a correspondence law with johnson_cook_damage (State::point_outputs)
 };
 
 /// Where a field's values are in a State: a vector field (3 per point), a scalar array, or neither (the
