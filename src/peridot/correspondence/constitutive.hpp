@@ -123,7 +123,8 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
   const bool failures = !ctx.failed_point.empty();
 #pragma omp parallel for schedule(static) reduction(min : first_inverted, first_nonfinite)
   for (std::size_t i = begin; i < end; ++i) {
-    if (failures && ctx.failed_point[i]) {  // a free particle: its state stays, and it carries no stress
+    // A point without stress this step: its state stays as it was.
+    const auto carry_no_stress = [&] {
       to_history[i - begin] = from_history[i - begin];
       if (inelastic_work && !accumulate) inelastic_work[i] = 0;
       to.rotation.set(i, from.rotation.get(i));
@@ -131,12 +132,23 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
       to.unrotated_stress.set(i, from.unrotated_stress.get(i));
       to.cauchy_stress.set(i, Mat3::Zero());
       to.force_tensor.set(i, Mat3::Zero());
+    };
+    if (failures && ctx.failed_point[i]) {  // a free particle
+      carry_no_stress();
       continue;
     }
     const Mat3 F = kin.deformation_gradient.get(i);
     const Mat3 F_rate = kin.deformation_gradient_rate.get(i);
     // The mid-step F must be invertible too (L uses its inverse).
     if (!(F.determinant() > 0) || !((F - 0.5 * dt * F_rate).determinant() > 0)) {
+      // With damage that breaks bonds, a point whose family has turned inside out has failed (D = 1: its bonds
+      // break at the commit), as a finite element is eroded when it inverts; elsewhere it is an error.
+      if constexpr (requires { law.damage.degrades_bonds(); from_history[0].damage; })
+        if (law.damage.degrades_bonds()) {
+          carry_no_stress();
+          to_history[i - begin].damage = 1;
+          continue;
+        }
       first_inverted = std::min(first_inverted, i);
       continue;
     }
