@@ -366,6 +366,8 @@ void CorrespondenceBlocks::state_arrays(StateArrays& arrays) {
   arrays.points("correspondence.rotation", m.committed.rotation.data(), n, 9, 0);
   arrays.points("correspondence.left_stretch", m.committed.left_stretch.data(), n, 9, 0);
   arrays.points("correspondence.unrotated_stress", m.committed.unrotated_stress.data(), n, 9, 0);
+  // A failed point keeps the F it failed with, which no kinematics can recompute from its (broken) bonds.
+  if (m.bond_damage) arrays.points("correspondence.deformation_gradient", m.kin.deformation_gradient.data(), n, 9, 0);
   arrays.points("correspondence.hourglass_force", m.hourglass_force, m.hourglass_force.size());
   arrays.points("correspondence.previous_hourglass_force", m.previous_hourglass_force, m.previous_hourglass_force.size());
   arrays.points("correspondence.previous_u", m.previous_u, m.previous_u.size());

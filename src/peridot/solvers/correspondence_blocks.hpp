@@ -53,8 +53,8 @@ class CorrespondenceBlocks {
   /// (johnson_cook_damage with the influence-function coupling). Collective.
   void restored();
 
-  /// The committed stress (R, V, τ), the laws' histories, the hourglass forces and work, and which symmetry
-  /// planes still act: for checkpoints.
+  /// The committed stress (R, V, τ), the laws' histories, the hourglass forces and work, which symmetry
+  /// planes still act and, with bond-degrading damage, F (a failed point keeps its last one): for checkpoints.
   void state_arrays(StateArrays& arrays);
   /// Stored elastic energy density (J/m³, per reference volume) into W at every correspondence point.
   void strain_energy_density(std::vector<double>& W) const;
