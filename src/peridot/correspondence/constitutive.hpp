@@ -7,6 +7,7 @@
 // A law is a small struct (hypoelastic.hpp, j2_viscoplastic.hpp) with a per-point History type; a block
 // holds one law and one History per point, and the block loop is instantiated per law, so nothing is
 // virtual inside it (dispatch once per block, docs/design.md "Kernels").
+#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <cstdint>
@@ -118,10 +119,10 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
                        typename Law::History* to_history, const StressFields& from, StressFields& to,
                        double* inelastic_work, bool accumulate) {
   constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
-  std::size_t first_inverted = none, first_nonfinite = none;
+  std::size_t first_inverted = none, first_distorted = none, first_nonfinite = none;
   const std::size_t begin = range.begin, end = range.end;
   const bool failures = !ctx.failed_point.empty();
-#pragma omp parallel for schedule(static) reduction(min : first_inverted, first_nonfinite)
+#pragma omp parallel for schedule(static) reduction(min : first_inverted, first_distorted, first_nonfinite)
   for (std::size_t i = begin; i < end; ++i) {
     // A point without stress this step: its state stays as it was.
     const auto carry_no_stress = [&] {
@@ -137,19 +138,22 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
       carry_no_stress();
       continue;
     }
-    const Mat3 F = kin.deformation_gradient.get(i);
-    const Mat3 F_rate = kin.deformation_gradient_rate.get(i);
-    // The mid-step F must be invertible too (L uses its inverse).
-    if (!(F.determinant() > 0) || !((F - 0.5 * dt * F_rate).determinant() > 0)) {
-      // With damage that breaks bonds, a point whose family has turned inside out has failed (D = 1: its bonds
-      // break at the commit), as a finite element is eroded when it inverts; elsewhere it is an error.
+    // With damage that breaks bonds, a point whose kinematics can no longer be followed has failed (D = 1: its
+    // bonds break at the commit), as a finite element is eroded when it inverts; elsewhere it is an error.
+    const auto kinematics_failed = [&](std::size_t& first_bad) {
       if constexpr (requires { law.damage.degrades_bonds(); from_history[0].damage; })
         if (law.damage.degrades_bonds()) {
           carry_no_stress();
           to_history[i - begin].damage = 1;
-          continue;
+          return;
         }
-      first_inverted = std::min(first_inverted, i);
+      first_bad = std::min(first_bad, i);
+    };
+    const Mat3 F = kin.deformation_gradient.get(i);
+    const Mat3 F_rate = kin.deformation_gradient_rate.get(i);
+    // The mid-step F must be invertible too (L uses its inverse).
+    if (!(F.determinant() > 0) || !((F - 0.5 * dt * F_rate).determinant() > 0)) {  // turned inside out
+      kinematics_failed(first_inverted);
       continue;
     }
     PolarState polar{from.rotation.get(i), from.left_stretch.get(i)};
@@ -158,6 +162,10 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
     typename Law::History history = from_history[i - begin];
     const Mat3 sigma = material_point_step(law, F, F_rate, dt, polar, tau, history, &d);
     to_history[i - begin] = history;
+    if (!d.allFinite()) {  // the integrated stretch V lost positive definiteness (flanagan_taylor.hpp)
+      kinematics_failed(first_distorted);
+      continue;
+    }
     if (!sigma.allFinite()) {
       first_nonfinite = std::min(first_nonfinite, i);
       continue;
@@ -177,14 +185,18 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
     to.cauchy_stress.set(i, integrity * sigma);
     to.force_tensor.set(i, first_piola_kirchhoff(F, integrity * sigma) * kin.shape_inverse.get(i));
   }
-  const std::size_t bad = std::min(first_inverted, first_nonfinite);
+  const std::size_t bad = std::min({first_inverted, first_distorted, first_nonfinite});
   if (bad == none) return;
   const Discretization& disc = *ctx.disc;
   const std::uint32_t id = bad < disc.input_id.size() ? disc.input_id[bad] : static_cast<std::uint32_t>(bad);
-  const std::string what = bad == first_inverted
-                               ? fmt::format("has an inverted deformation gradient (det F = {:.3g})",
-                                             kin.deformation_gradient.get(bad).determinant())
-                               : std::string("got a non-finite stress from its constitutive law");
+  const std::string what =
+      bad == first_inverted
+          ? fmt::format("has an inverted deformation gradient (det F = {:.3g})", kin.deformation_gradient.get(bad).determinant())
+      : bad == first_distorted
+          ? std::string("has a non-finite rate of deformation: its stretch V, integrated over steps, is no longer "
+                        "positive definite (a strain increment per step far too large; a shorter time step or "
+                        "johnson_cook_damage lets such points fail)")
+          : std::string("got a non-finite stress from its constitutive law");
   throw NumericalError(fmt::format("correspondence model: point {} (input id {}) at ({:g}, {:g}, {:g}) m {}", bad,
                                    id, disc.x(bad, 0), disc.x(bad, 1), disc.x(bad, 2), what));
 }
@@ -195,7 +207,8 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
 /// in place: R, V, τ of `s` and the block's history advance to n+1. When `inelastic_work` is given (one
 /// entry per point of the problem), ΔW_in of every point of the block is added to it
 /// (inelastic_work_increment). Throws NumericalError naming the lowest-numbered point whose F is inverted
-/// (det F ≤ 0) or whose law returned a non-finite stress.
+/// (det F ≤ 0), whose rate of deformation is not finite or whose law returned a non-finite stress; with a law
+/// whose damage breaks bonds, the first two make the point fail instead (D = 1).
 template <ConstitutiveLaw Law>
 void update_block_stress(const CorrespondenceContext& ctx, const KinematicFields& kin, double dt,
                          CorrespondenceBlock<Law>& block, StressFields& s, double* inelastic_work = nullptr) {

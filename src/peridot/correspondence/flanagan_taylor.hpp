@@ -24,7 +24,8 @@ struct PolarState {
 };
 
 /// Advances R and V over one step with velocity gradient L (1/s) and returns the unrotated rate of
-/// deformation d (1/s).
+/// deformation d (1/s). V is integrated explicitly; once strain increments far beyond those of a stable step
+/// have made it lose positive definiteness (tr V I − V singular), ω and d are not finite.
 Mat3 flanagan_taylor_update(const Mat3& L, double dt, PolarState& polar);
 
 /// Q = (I − ½Δt [ω]×)⁻¹ (I + ½Δt [ω]×), ω in rad/s.

@@ -47,7 +47,10 @@ Mat3 JohnsonCook::update(const Mat3& tau, const Mat3& d, double dt, History& his
   };
   const auto residual = [&](double dlambda) { return trial_norm - 2 * shear * dlambda - root_two_thirds * surface(dlambda); };
   const double upper = trial_norm / (2 * shear);
-  const RootResult root = brent_root(residual, 0.0, upper, residual(0.0), residual(upper), 1e-14 * upper);
+  // residual(upper) = −√(2/3) G ≤ 0, but at and above melting (G = 0) round-off can leave it a few ulps of
+  // |S^tr| above zero: taken as 0, the root is then Δλ = upper (no deviatoric stress).
+  const double residual_upper = std::min(residual(upper), 0.0);
+  const RootResult root = brent_root(residual, 0.0, upper, residual(0.0), residual_upper, 1e-14 * upper);
   if (!root.converged) return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
   const double dlambda = root.x;
   const double eqps_increment = root_two_thirds * dlambda;

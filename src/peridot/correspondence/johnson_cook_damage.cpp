@@ -22,6 +22,9 @@ SectionSpec JohnsonCookDamage::section() {
        .description = "D4 (-), with ε̇* = max(ε̇p/ε̇0, 1), ε̇0 the law's reference_strain_rate"},
       {.key = "d5", .default_yaml = "0",
        .description = "D5 (-), with T* of thermal_softening (0 without it)"},
+      {.key = "minimum_failure_strain", .default_yaml = "1e-3", .range = positive,
+       .description = "floor of εf (-): where the fit gives less (with D1 < 0, D3 < 0: high triaxiality in tension), "
+                      "the point fails after this much plastic strain"},
       {.key = "coupling", .type = ValueType::choice, .default_yaml = "influence_function",
        .description = "influence_function: bond weights ω (1 − max(D_i, D_j)), a bond breaks at D = 1 (Tupek et al.); "
                       "local_stress: the force uses (1 − D) σ, no bond breaks (unstable under refinement, for "
@@ -41,6 +44,7 @@ JohnsonCookDamage JohnsonCookDamage::from_parameters(const Parameters& q) {
   damage.d3 = q.number_or("johnson_cook_damage.d3", 0);
   damage.d4 = q.number_or("johnson_cook_damage.d4", 0);
   damage.d5 = q.number_or("johnson_cook_damage.d5", 0);
+  damage.minimum_failure_strain = q.number_or("johnson_cook_damage.minimum_failure_strain", 1e-3);
   damage.coupling = q.has("johnson_cook_damage.coupling") && q.text("johnson_cook_damage.coupling") == "local_stress"
                         ? DamageCoupling::local_stress
                         : DamageCoupling::influence_function;

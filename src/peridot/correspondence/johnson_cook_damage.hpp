@@ -4,8 +4,10 @@
 //   D_{n+1} = min(1, D_n + Δεp/εf),  εf = [D1 + D2 exp(D3 η)][1 + D4 ln ε̇*][1 + D5 T*]
 // η = p/σ_vm the stress triaxiality of the step's returned stress (p = tr σ/3, positive in tension),
 // ε̇* = max(ε̇p/ε̇0, 1) with the law's reference_strain_rate, T* the homologous temperature of the law's
-// thermal softening (0 without it). A step whose εf is zero or negative (possible far in compression with
-// D3 < 0) adds nothing.
+// thermal softening (0 without it). εf is never below minimum_failure_strain: fits with D1 < 0 and D3 < 0
+// (6061-T6's, among others) give εf ≤ 0 beyond some triaxiality in tension (η > 1.35 for 6061-T6), where the
+// material carries almost no plastic flow (spall); read literally, such a step would add no damage at all,
+// and a point torn apart in hydrostatic tension would never fail.
 //
 // How D acts (`coupling`), after Tupek, Rimoli & Radovitzky, CMAME 263 (2013) 20–26:
 //   influence_function  the weight of every bond i–j in K, F and the force state is degraded,
@@ -43,11 +45,13 @@ enum class DamageCoupling { influence_function, local_stress };
 struct JohnsonCookDamage {
   bool enabled = false;
   double d1 = 0, d2 = 0, d3 = 0, d4 = 0, d5 = 0;  ///< D1 … D5 (-)
+  double minimum_failure_strain = 1e-3;           ///< the floor of εf (-)
   DamageCoupling coupling = DamageCoupling::influence_function;
 
-  /// εf (-) at triaxiality η, ln ε̇* and T* (see above).
+  /// εf (-) at triaxiality η, ln ε̇* and T* (see above), at least minimum_failure_strain.
   double failure_strain(double triaxiality, double log_rate, double homologous_temperature) const {
-    return (d1 + d2 * std::exp(d3 * triaxiality)) * (1 + d4 * log_rate) * (1 + d5 * homologous_temperature);
+    const double fit = (d1 + d2 * std::exp(d3 * triaxiality)) * (1 + d4 * log_rate) * (1 + d5 * homologous_temperature);
+    return fit > minimum_failure_strain ? fit : minimum_failure_strain;  // also when the fit is NaN (η = ±∞)
   }
   /// Adds Δεp/εf to `damage` (capped at 1) for a step that returned to the stress τ (its deviator S and
   /// pressure p = tr τ/3) with plastic strain increment Δεp.
@@ -57,8 +61,7 @@ struct JohnsonCookDamage {
     const double pressure = tau.trace() / 3;
     const double von_mises = std::sqrt(1.5) * deviator(tau).norm();
     const double triaxiality = von_mises > 0 ? pressure / von_mises : 0.0;
-    const double failure = failure_strain(triaxiality, log_rate, homologous_temperature);
-    if (failure > 0) damage = std::min(1.0, damage + eqps_increment / failure);
+    damage = std::min(1.0, damage + eqps_increment / failure_strain(triaxiality, log_rate, homologous_temperature));
   }
   /// Whether D degrades the bonds' influence function (and breaks them at D = 1).
   bool degrades_bonds() const { return enabled && coupling == DamageCoupling::influence_function; }
