@@ -1,6 +1,7 @@
 // Contact (contact/short_range.hpp, contact/rigid_body.hpp): two blocks that collide bounce apart with the
 // momentum conserved to round-off and the energy closing; the faces of a crack do not pass through each
-// other; contact that touches nothing changes no bit; a free rigid sphere exchanges momentum with a block
+// other; a bond broken under compression gives its pair no energy; contact that touches nothing changes
+// no bit; a free rigid sphere exchanges momentum with a block
 // exactly; each rigid shape pushes a point out along its surface normal with κ h.
 #include <gtest/gtest.h>
 
@@ -135,6 +136,41 @@ solver: {{end_time: 40 us}}
   fmt::print("measured: the halves overlap by {:.3g} mm without contact, {:.3g} mm with it\n", without * 1e3, with * 1e3);
   EXPECT_GT(without, 0.5e-3);
   EXPECT_LT(with, -0.25e-3);  // the faces stay more than half a spacing apart
+}
+
+TEST(ShortRangeContact, BondBrokenUnderCompressionResistsOnlyFurtherApproach) {
+  // Two points 1 mm apart (contact distance d = 0.9 mm), their bond broken while they are 0.6 mm apart (a point
+  // failing in a crushed region): the pair must not push at 0.6 mm, which would hand it ½ k (d − r)² of energy
+  // out of nothing; it resists approach from there, and once the points have been d apart the full d holds.
+  Simulation sim(parse_deck(R"(discretization: {dimension: 3, spacing: 1 mm, horizon_factor: 1.5}
+materials:
+  steel: {model: pmb, density: 7800, youngs_modulus: 200 GPa, damage: {critical_stretch: 0.5}}
+bodies:
+  pair: {material: steel, shape: {box: {min: [0, 0, 0], max: [2 mm, 1 mm, 1 mm]}}}
+contact: {}
+solver: {end_time: 1 us}
+)",
+                            "pair.yaml", "."));
+  sim.initialize();
+  ASSERT_EQ(sim.discretization().num_points(), 2u);
+  auto& broken = const_cast<BondList&>(sim.bonds()).broken;  // what a failing point does to its bonds
+  auto push_at = [&](double gap) {  // force density on the left point along +x (< 0: pushed away) at this gap
+    sim.state().u(1, 0) = gap - 1e-3;
+    sim.evaluate(sim.time_step(), false);
+    return sim.contact_force()(0, 0);
+  };
+  ASSERT_EQ(push_at(0.6e-3), 0.0);  // bonded: no contact
+  std::fill(broken.begin(), broken.end(), std::uint8_t{1});
+  EXPECT_EQ(push_at(0.6e-3), 0.0);      // broken at 0.6 mm: touching there, not pushing
+  const double closer = push_at(0.5e-3);
+  EXPECT_LT(closer, 0.0);               // pushed closer: it resists
+  EXPECT_EQ(push_at(0.6e-3), 0.0);      // back where it broke
+  EXPECT_EQ(push_at(0.8e-3), 0.0);
+  EXPECT_EQ(push_at(1.0e-3), 0.0);      // apart beyond d
+  const double again = push_at(0.6e-3);  // now the full d = 0.9 mm: the linear penalty at 0.3 mm against 0.1 mm
+  fmt::print("measured: force density {:.4g} N/m³ at 0.5 mm after the break at 0.6 mm, {:.4g} at 0.6 mm after opening\n",
+             closer, again);
+  EXPECT_NEAR(again / closer, 3.0, 1e-12);
 }
 
 TEST(RigidBody, FreeSphereAndBlockExchangeMomentumExactly) {

@@ -242,7 +242,7 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
 }
 
 void ShortRangeContact::compute(const double* y, const double* v, const std::vector<std::uint8_t>& broken,
-                                VectorField& b) const {
+                                double* opened, VectorField& b) const {
   const double start = omp_get_wtime();
   double* out = b.data();
   const bool friction = !mu_.empty() && v != nullptr;
@@ -255,7 +255,15 @@ void ShortRangeContact::compute(const double* y, const double* v, const std::vec
       if (bond != no_bond && broken[bond] == 0) continue;
       const std::size_t j = partner_[k];
       const double dx = y[3 * j] - xi, dy = y[3 * j + 1] - yi, dz = y[3 * j + 2] - zi;
-      const double r2 = dx * dx + dy * dy + dz * dz, d = distance_[k];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      double d = distance_[k];
+      if (bond != no_bond && opened) {
+        // The pair of a broken bond: its contact distance is the largest distance since the break, up to d.
+        // Only i's thread writes bond i → j; j's bond j → i sees the same r (the same bits of r²).
+        double& reach = opened[bond];
+        if (reach < d) reach = r2 >= d * d ? d : std::max(reach, std::sqrt(r2));
+        d = reach;
+      }
       if (r2 >= d * d || r2 == 0) continue;
       const double r = std::sqrt(r2);
       const double push = coefficient_[k] * (d - r);  // |b| (N/m³)
@@ -277,14 +285,16 @@ void ShortRangeContact::compute(const double* y, const double* v, const std::vec
   compute_seconds_ += omp_get_wtime() - start;
 }
 
-double ShortRangeContact::point_energy_density(std::size_t i, const double* y, const std::vector<std::uint8_t>& broken) const {
+double ShortRangeContact::point_energy_density(std::size_t i, const double* y, const std::vector<std::uint8_t>& broken,
+                                               const double* opened) const {
   if (i >= owned_) return 0.0;
   double energy = 0;
   for (std::uint64_t k = offsets_[i]; k < offsets_[i + 1]; ++k) {
     if (bond_[k] != no_bond && broken[bond_[k]] == 0) continue;
     const std::size_t j = partner_[k];
     const double dx = y[3 * j] - y[3 * i], dy = y[3 * j + 1] - y[3 * i + 1], dz = y[3 * j + 2] - y[3 * i + 2];
-    const double r = std::sqrt(dx * dx + dy * dy + dz * dz), d = distance_[k];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double d = bond_[k] != no_bond && opened ? std::min(distance_[k], opened[bond_[k]]) : distance_[k];
     if (r < d) energy += 0.25 * coefficient_[k] * (d - r) * (d - r);
   }
   return energy;

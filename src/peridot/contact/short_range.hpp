@@ -7,7 +7,11 @@
 //   b_i = −k_ij (d_ij − r) V_j e_ij,   e_ij = (y_j − y_i)/r,   k_ij = stiffness_factor × min(c_i/δ_i, c_j/δ_j),
 // c the block's stable (PMB) micromodulus, so that c_S = 15 c by default as in LAMMPS and EMU; the pair
 // stores ½ k_ij (d_ij − r)² V_i V_j. The reference fraction keeps neighbours at rest apart from the
-// contact: a pair is never compressed at t = 0. With friction (coefficient μ per pair of bodies), i also
+// contact: a pair is never compressed at t = 0. A bond that breaks while its points are closer than d_ij
+// (a point failing under compression) would otherwise hand the pair ½ k (d_ij − r)² of energy at once and
+// fire its points apart; so the pair's contact distance starts at the distance r_b it had when the bond
+// broke, grows with the largest distance since, and is d_ij once the pair has been that far apart:
+//   d_ij(t) = min(d_ij, max over the time since the break of r). The force then only resists approach. With friction (coefficient μ per pair of bodies), i also
 // gets μ k_ij (d_ij − r) V_j along the tangential part of v_j − v_i (Coulomb, against the sliding).
 //
 // The search costs little when nothing touches: a Verlet list of the pairs within d_ij + s, s the skin,
@@ -51,10 +55,15 @@ class ShortRangeContact {
   const std::vector<int>& remote_count() const { return remote_count_; }
 
   /// Adds the short-range force density on each owned point into b (N/m³), from the slots' positions y and
-  /// (with friction) velocities v, 3 values per slot; `broken`: the bonds' flags.
-  void compute(const double* y, const double* v, const std::vector<std::uint8_t>& broken, VectorField& b) const;
-  /// Energy stored in owned point i's pairs, half of each, per volume of i (J/m³).
-  double point_energy_density(std::size_t i, const double* y, const std::vector<std::uint8_t>& broken) const;
+  /// (with friction) velocities v, 3 values per slot; `broken`: the bonds' flags; `opened`: per bond, the
+  /// contact distance of its pair since it broke (0 while intact: set and grown here), or null when no bond
+  /// can break. Calling it twice with the same y changes nothing.
+  void compute(const double* y, const double* v, const std::vector<std::uint8_t>& broken, double* opened,
+               VectorField& b) const;
+  /// Energy stored in owned point i's pairs, half of each, per volume of i (J/m³), with the contact distances
+  /// of the last compute.
+  double point_energy_density(std::size_t i, const double* y, const std::vector<std::uint8_t>& broken,
+                              const double* opened) const;
   bool has_friction() const { return !friction_.empty(); }
 
   /// Pairs in the list, list builds so far, and the seconds spent in builds and in place and compute (for the

@@ -99,6 +99,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   if (problem_.contact) {
     const Discretization& all = comm_.serial() ? disc_ : global_disc_;
     short_range_ = std::make_unique<ShortRangeContact>(*problem_.contact, problem_, all, model_.params, model_.any_damage());
+    if (model_.any_damage()) contact_opened_.assign(bonds_.num_bonds(), 0.0);
     if (!comm_.serial()) {
       const std::vector<std::uint32_t> counts = comm_.all_gather(std::vector<std::uint32_t>{static_cast<std::uint32_t>(owned_)});
       const std::vector<std::uint32_t> everyone = comm_.all_gather(
@@ -284,7 +285,8 @@ void Simulation::compute_contact() {
     std::copy(state_.v.data(), state_.v.data() + 3 * owned_, contact_v_.data());
     contact_halo_.exchange(contact_v_.data(), 3);
   }
-  short_range_->compute(contact_y_.data(), friction ? contact_v_.data() : nullptr, bonds_.broken, contact_force_);
+  short_range_->compute(contact_y_.data(), friction ? contact_v_.data() : nullptr, bonds_.broken,
+                        contact_opened_.empty() ? nullptr : contact_opened_.data(), contact_force_);
 }
 
 void Simulation::commit(double dt) {
@@ -352,6 +354,7 @@ StateArrays Simulation::state_arrays() {
   arrays.points("external_work", work_, n);
   arrays.points("contact_force", contact_force_, contact_force_.size());
   arrays.points("contact_energy", contact_energy_, contact_energy_.size());
+  arrays.bonds("contact_opened", contact_opened_, nnz);
   if (energy_failure_) energy_failure_->state_arrays(arrays);
   if (correspondence_) correspondence_->state_arrays(arrays);
   bodies_->state_arrays(arrays);
@@ -429,7 +432,9 @@ void Simulation::gather_outputs(bool fields, bool totals) {
       for (std::size_t i = 0; i < owned_; ++i) {
         if (!bodies_->empty()) contact_energy_[i] += bodies_->point_energy(disc_, state_.u, i);
         if (short_range_ && !contact_y_.empty())
-          contact_energy_[i] += short_range_->point_energy_density(i, contact_y_.data(), bonds_.broken) * disc_.volume[i];
+          contact_energy_[i] += short_range_->point_energy_density(i, contact_y_.data(), bonds_.broken,
+                                                                contact_opened_.empty() ? nullptr : contact_opened_.data()) *
+                              disc_.volume[i];
       }
     }
     symmetry_force_density_.resize(problem_.rigid_walls.size());

@@ -245,6 +245,7 @@ class Simulation {
   /// the remote partners, which contact_halo_ copies from their owners; distributed, every point's owner
   /// rank and the owned points' global indices, rank after rank.
   std::vector<double> contact_y_, contact_v_;
+  std::vector<double> contact_opened_;  ///< per bond: its pair's contact distance since it broke (ShortRangeContact)
   Halo contact_halo_;
   std::vector<int> owner_;
   std::vector<double> contact_energy_, global_contact_energy_;  ///< J per point, for the totals
