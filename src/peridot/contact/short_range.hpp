@@ -11,8 +11,8 @@
 // (a point failing under compression) would otherwise hand the pair ½ k (d_ij − r)² of energy at once and
 // fire its points apart; so the pair's contact distance starts at the distance r_b it had when the bond
 // broke, grows with the largest distance since, and is d_ij once the pair has been that far apart:
-//   d_ij(t) = min(d_ij, max over the time since the break of r). The force then only resists approach. With friction (coefficient μ per pair of bodies), i also
-// gets μ k_ij (d_ij − r) V_j along the tangential part of v_j − v_i (Coulomb, against the sliding).
+//   d_ij(t) = min(d_ij, max over the time since the break of r). The force then only resists approach.
+// With friction (coefficient μ per pair of bodies), i also gets μ k_ij (d_ij − r) V_j along the tangential part of v_j − v_i (Coulomb, against the sliding).
 //
 // The search costs little when nothing touches: a Verlet list of the pairs within d_ij + s, s the skin,
 // over the deformed positions, rebuilt only when some point has moved s/2 since the last build (then no

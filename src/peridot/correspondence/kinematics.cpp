@@ -275,8 +275,8 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
     throw_singular_shape_tensor(ctx, first_bad, shape_tensor_of(ctx, first_bad));
 }
 
-bool shape_tensor_well_conditioned(const CorrespondenceContext& ctx, std::size_t i, double min_reciprocal_condition) {
-  return well_conditioned(shape_tensor_of(ctx, i), min_reciprocal_condition);
+bool shape_tensor_well_conditioned(const CorrespondenceContext& ctx, std::size_t i) {
+  return well_conditioned(shape_tensor_of(ctx, i), ctx.min_reciprocal_condition);
 }
 
 Mat3 mid_step_velocity_gradient(const Mat3& F_end, const Mat3& F_rate, double dt) {

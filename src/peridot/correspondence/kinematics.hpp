@@ -67,9 +67,8 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
 double pair_weight(const CorrespondenceContext& ctx, std::size_t own, std::size_t other, double xi);
 
 /// Whether point i's shape tensor, with its intact bonds at their current weights (mirror bonds included
-/// while active), has λ_min/λ_max ≥ min_reciprocal_condition (compute_kinematics checks
-/// ctx.min_reciprocal_condition).
-bool shape_tensor_well_conditioned(const CorrespondenceContext& ctx, std::size_t i, double min_reciprocal_condition);
+/// while active), passes the conditioning check of compute_kinematics (λ_min/λ_max ≥ ctx.min_reciprocal_condition).
+bool shape_tensor_well_conditioned(const CorrespondenceContext& ctx, std::size_t i);
 
 /// Per-point kinematic fields.
 struct KinematicFields {

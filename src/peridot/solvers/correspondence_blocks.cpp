@@ -218,9 +218,7 @@ void CorrespondenceBlocks::Impl::update_damaged_bonds(double* dissipation) {
         if constexpr (requires { block.law.damage.degrades_bonds(); })
           if (block.law.damage.degrades_bonds())
             for (std::size_t i = block.range.begin; i < block.range.end; ++i)
-              if (!ctx.failed_point[i] && !protected_point(i) &&
-                  !shape_tensor_well_conditioned(ctx, i, ctx.min_reciprocal_condition))
-                isolated.push_back(i);
+              if (!ctx.failed_point[i] && !protected_point(i) && !shape_tensor_well_conditioned(ctx, i)) isolated.push_back(i);
       }, any);
     for (std::size_t i : isolated) point_damage[i] = 1;
     for (AnyBlock& any : blocks)
