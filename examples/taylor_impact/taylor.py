@@ -54,9 +54,13 @@ DAMAGE = "    johnson_cook_damage: {d1: -0.77, d2: 1.45, d3: -0.47, d4: 0, d5: 1
 
 
 def make_deck(template, across, horizon_factor, ld, speed, end_time_us, hourglass=None, thermal=True, viscosity=None,
-              contact="penalty", law="j2_viscoplastic", damage=False):
+              contact="penalty", law="j2_viscoplastic", damage=False, bulk_viscosity=None):
     dx = D0 / across
     text = template
+    if bulk_viscosity is not None:  # (C_l, C_q) of the shock viscosity (the deck has none)
+        text = re.sub(r"(\n( *)hourglass_coefficient: [^\n]*)",
+                      rf"\1\n\2bulk_viscosity_linear: {bulk_viscosity[0]}\n\2bulk_viscosity_quadratic: {bulk_viscosity[1]}",
+                      text, count=1)
     if damage:
         text = re.sub(r"(\n *hourglass_coefficient:)", "\n" + DAMAGE.rstrip("\n") + r"\1", text, count=1)
     if law == "johnson_cook":
@@ -201,6 +205,9 @@ def main():
     p.add_argument("--hourglass", type=float, help="hourglass coefficient C_HG for every shot (default: the deck's)")
     p.add_argument("--hourglass-viscosity", type=float,
                    help="hourglass dashpots C_HV for every shot (default: none, as in the deck)")
+    p.add_argument("--bulk-viscosity", metavar="C_L,C_Q",
+                   help="shock (bulk) viscosity for every shot: linear and quadratic coefficients, e.g. 0.06,1.5 "
+                        "(default: none, as in the deck)")
     p.add_argument("--contact", choices=("penalty", "symmetry"), default="symmetry",
                    help="the anvil's contact: symmetry (the deck's: a symmetry plane on the impact face; README, "
                         "\"The face layers\") or penalty (a penalty plane through the first layer's centres, the "
@@ -219,6 +226,7 @@ def main():
     deck_hourglass = float(re.search(r"hourglass_coefficient: ([0-9.eE+-]+)", template).group(1))
     shots = experiment(a.data) if os.path.exists(a.data) else []
     results = []
+    bulk_viscosity = tuple(float(c) for c in a.bulk_viscosity.split(",")) if a.bulk_viscosity else None
     chosen = [shot for shot in SETS[a.set] if not a.only or shot[0] in a.only.split(",")]
     for name, across, hf, ld, speed, end, *rest in chosen:
         chg = rest[0] if rest else (a.hourglass if a.hourglass is not None else deck_hourglass)
@@ -227,7 +235,7 @@ def main():
         os.makedirs(run_dir, exist_ok=True)
         deck = os.path.join(run_dir, "deck.yaml")
         open(deck, "w").write(make_deck(template, across, hf, ld, speed, end, chg, not a.no_thermal, chv, a.contact, a.law,
-                                         a.damage))
+                                         a.damage, bulk_viscosity))
         if not (a.reuse and os.path.exists(os.path.join(run_dir, "output", "results.e"))):
             r = subprocess.run([a.peridot, "run", "-q", "-t", str(a.threads), deck], capture_output=True, text=True)
             if r.returncode != 0:

@@ -108,6 +108,18 @@ inline double elastic_energy_density(const Mat3& tau, double jacobian, double bu
   return jacobian * (p * p / (2 * bulk_modulus) + double_contraction(S, S) / (4 * shear_modulus));
 }
 
+/// Bulk (artificial) viscosity of shocks, the von Neumann–Richtmyer quadratic term with Landshoff's linear
+/// one as hydrocodes apply it (Wilkins 1980; LS-DYNA's Q1, Q2): a pressure
+///   q = ℓ (b_q ℓ (tr D)² − b_l tr D)  while the point is compressed (tr D < 0), 0 otherwise,
+/// b_q = C_q ρ, b_l = C_l ρ c (c the P-wave speed), ℓ the point's size (V^(1/3)), added to the law's stress as
+/// −q I. It spreads a shock over a few points and damps the ringing behind it, which otherwise throws the
+/// material behind a strong shock into spurious tension. It is not part of the law's state (τ): its work
+/// J q (−tr D) Δt per reference volume is dissipated. Returns q (Pa); tr D = tr d (d = Rᵀ D R).
+inline double bulk_viscous_pressure(double trace_rate, double size, double linear, double quadratic) {
+  if (!(trace_rate < 0)) return 0;
+  return size * (quadratic * size * trace_rate * trace_rate - linear * trace_rate);
+}
+
 namespace detail {
 
 /// The stress step of every point of a block from (R, V, τ) of `from` and the histories `from_history`
@@ -122,6 +134,12 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
   std::size_t first_inverted = none, first_distorted = none, first_nonfinite = none;
   const std::size_t begin = range.begin, end = range.end;
   const bool failures = !ctx.failed_point.empty();
+  const std::size_t own_block = begin < end ? static_cast<std::size_t>(ctx.disc->block[begin]) : 0;
+  const double viscosity_linear =
+      own_block < ctx.bulk_viscosity_linear.size() ? ctx.bulk_viscosity_linear[own_block] : 0.0;
+  const double viscosity_quadratic =
+      own_block < ctx.bulk_viscosity_quadratic.size() ? ctx.bulk_viscosity_quadratic[own_block] : 0.0;
+  const bool viscous = viscosity_linear != 0 || viscosity_quadratic != 0;
 #pragma omp parallel for schedule(static) reduction(min : first_inverted, first_distorted, first_nonfinite)
   for (std::size_t i = begin; i < end; ++i) {
     // A point without stress this step: its state stays as it was.
@@ -170,9 +188,13 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
       first_nonfinite = std::min(first_nonfinite, i);
       continue;
     }
+    const double q = viscous ? bulk_viscous_pressure(d.trace(), std::cbrt(ctx.disc->volume[i]), viscosity_linear,
+                                                     viscosity_quadratic)
+                             : 0.0;
     if (inelastic_work) {
-      const double work = inelastic_work_increment(tau_old, tau, d, dt, law.shear_modulus(),
-                                                   (F - 0.5 * dt * F_rate).determinant());
+      const double mid_jacobian = (F - 0.5 * dt * F_rate).determinant();
+      double work = inelastic_work_increment(tau_old, tau, d, dt, law.shear_modulus(), mid_jacobian);
+      if (q != 0) work -= mid_jacobian * q * d.trace() * dt;
       inelastic_work[i] = accumulate ? inelastic_work[i] + work : work;
     }
     to.rotation.set(i, polar.rotation);
@@ -182,8 +204,9 @@ void block_stress_step(const CorrespondenceContext& ctx, const KinematicFields& 
     double integrity = 1;
     if constexpr (requires { law.damage.degrades_stress(); history.damage; })
       if (law.damage.degrades_stress()) integrity = 1 - history.damage;
-    to.cauchy_stress.set(i, integrity * sigma);
-    to.force_tensor.set(i, first_piola_kirchhoff(F, integrity * sigma) * kin.shape_inverse.get(i));
+    const Mat3 acting = integrity * (q != 0 ? Mat3(sigma - q * Mat3::Identity()) : sigma);
+    to.cauchy_stress.set(i, acting);
+    to.force_tensor.set(i, first_piola_kirchhoff(F, acting) * kin.shape_inverse.get(i));
   }
   const std::size_t bad = std::min({first_inverted, first_distorted, first_nonfinite});
   if (bad == none) return;

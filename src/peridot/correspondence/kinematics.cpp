@@ -29,6 +29,8 @@ CorrespondenceContext make_correspondence_context(const Discretization& disc, co
   ctx.weighted_volume.resize(bonds.num_bonds());
   ctx.hourglass_stiffness.assign(blocks.size(), 0.0);
   ctx.hourglass_damping.assign(blocks.size(), 0.0);
+  ctx.bulk_viscosity_linear.assign(blocks.size(), 0.0);
+  ctx.bulk_viscosity_quadratic.assign(blocks.size(), 0.0);
   const auto& x = disc.x;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i)

@@ -42,6 +42,11 @@ struct CorrespondenceContext {
   std::vector<double> hourglass_stiffness;
   /// Per block: hourglass bond dashpot c_hv (N s/m⁶), 0 = no damping (see force.hpp).
   std::vector<double> hourglass_damping;
+  /// Per block: the bulk viscosity of shocks (constitutive.hpp, bulk_viscous_pressure): its linear
+  /// coefficient b_l = C_l ρ c (kg/(m² s), c the P-wave speed) and quadratic one b_q = C_q ρ (kg/m³); 0 = none.
+  /// Empty (as in a context made by hand) counts as none.
+  std::vector<double> bulk_viscosity_linear;
+  std::vector<double> bulk_viscosity_quadratic;
   /// K is refused when λ_min(K)/λ_max(K) falls below this (dimensionless). At 1e-8 the relative error
   /// that round-off in the bond sums can put into F through K⁻¹ stays near 1e-8.
   double min_reciprocal_condition = 1e-8;

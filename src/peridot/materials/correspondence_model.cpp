@@ -19,7 +19,8 @@ namespace peridot {
 CorrespondenceModel::Params CorrespondenceModel::resolve(const MaterialSpec& spec, const Problem&, MaterialParams& block) {
   const Parameters& q = spec.parameters;
   Params p{correspondence::make_law(q.text("constitutive_law"), q, spec.elastic, spec.density),
-           q.number("hourglass_coefficient"), q.number("hourglass_viscosity")};
+           q.number("hourglass_coefficient"), q.number("hourglass_viscosity"), q.number("bulk_viscosity_linear"),
+           q.number("bulk_viscosity_quadratic")};
   // Stable time step (docs/models/correspondence.md): the Silling–Askari bound of the PMB solid with the
   // same P-wave modulus M = K + 4G/3 (a PMB solid, ν = 1/4, has M = 1.8K), but never less stiff than the
   // PMB solid of the same K, plus the hourglass bond stiffness c_hg = 18 C_HG K/(πδ⁴) (force.hpp):
@@ -28,6 +29,7 @@ CorrespondenceModel::Params CorrespondenceModel::resolve(const MaterialSpec& spe
   block.stable_micromodulus =
       18 * (std::max(K, M / 1.8) + p.hourglass_coefficient * K) / (std::numbers::pi * std::pow(block.horizon, 4));
   block.stable_damping = correspondence::hourglass_damping(p.hourglass_viscosity, spec.density, K, block.horizon);
+  block.stable_bulk_viscosity = p.bulk_viscosity_linear;
   block.damage_breaks_bonds = std::visit([](const auto& law) {
     if constexpr (requires { law.damage.degrades_bonds(); }) return law.damage.degrades_bonds();
     else return false;
@@ -88,7 +90,13 @@ ModelInfo CorrespondenceModel::info() {
        .description = "C_HG (-): hourglass bond stiffness 18 C_HG K/(πδ⁴); 0 = no control"},
       {.key = "hourglass_viscosity", .default_yaml = "0", .range = non_negative,
        .description = "C_HV (-): viscous hourglass damping, a bond dashpot 18 C_HV √(ρK)/(πδ³) on the non-affine "
-                      "stretch rate; 0 = none (elastic control only)"}};
+                      "stretch rate; 0 = none (elastic control only)"},
+      {.key = "bulk_viscosity_linear", .default_yaml = "0", .range = non_negative,
+       .description = "C_l (-): linear bulk viscosity of shocks, q = C_l ρ c ℓ |tr D| in compression (c the P-wave "
+                      "speed, ℓ = V^(1/3)); hydrocodes use 0.06; 0 = none"},
+      {.key = "bulk_viscosity_quadratic", .default_yaml = "0", .range = non_negative,
+       .description = "C_q (-): quadratic bulk viscosity of shocks, q = C_q ρ ℓ² (tr D)² in compression; hydrocodes "
+                      "use 1.5; 0 = none"}};
   std::vector<SectionSpec> sections;
   correspondence::ConstitutiveLaws::for_each([&](auto law) {
     using Law = decltype(law);
@@ -146,20 +154,28 @@ Foster, Silling & Chen (2010).
   hold a zero-energy mode but store its energy, so an impact leaves it ringing; the dashpots dissipate it.
   Damping ratio of the checkerboard mode ≈ 2.1 C_HV/√C_HG (about 0.3 measured at C_HV = C_HG = 0.02); C_HV is
   hourglass_viscosity
+- bulk (shock) viscosity (optional; von Neumann–Richtmyer with a linear term, as hydrocodes apply it): while a point
+  is compressed (tr D < 0) its stress gains −q I, q = ρ ℓ (C_q ℓ (tr D)² − C_l c tr D), ℓ = V^(1/3) the point's
+  size, c the P-wave speed √((K + 4G/3)/ρ); C_l and C_q are bulk_viscosity_linear and bulk_viscosity_quadratic
+  (hydrocodes use 0.06 and 1.5; default 0: none). q is not part of the law's state; its work J q |tr D| Δt per
+  reference volume is dissipated
 - (62) Green–Lagrange strain E = ½(FᵀF − I), an output only
 
 Energy bookkeeping (history CSV): strain_energy is the elastic energy Σ J (p²/(2K) + S:S/(4G)) V;
 dissipated_energy the inelastic work Σ ∫ J S : (dev(d) − Ṡ/(2G)) dt V (the plastic work of the J2 and Johnson–Cook laws, 0 for the
-hypoelastic law); hourglass_work the work of the hourglass forces (springs and dashpots),
+hypoelastic law) plus the work of the bulk viscosity; hourglass_work the work of the hourglass forces (springs and dashpots),
 −Σ ½(f_hg^n + f_hg^{n+1})·Δu V per step.
 With the kinetic energy they balance the external work. Exodus output adds deformation_gradient_*,
-cauchy_stress_*, von_mises_stress, green_lagrange_strain_*, equivalent_plastic_strain and dissipation.
+cauchy_stress_* (the stress that acts: with −q I where a bulk viscosity is on), von_mises_stress,
+green_lagrange_strain_*, equivalent_plastic_strain and dissipation.
 
 Stable time step: the Silling–Askari bound with c = 18 [max(K, M/1.8) + C_HG K]/(πδ⁴), M = K + 4G/3 the
 P-wave modulus: the PMB solid with the same wave speed (a PMB solid has M = 1.8K), never softer than the
 PMB solid of the same K, stiffened by the hourglass springs. With hourglass dashpots it is multiplied by
 √(1 + ζ²) − ζ, ζ = (c_hv/c)/Δt_SA (central differences with damping ratio ζ on the highest mode: 0.81 for
-the Taylor example, aluminium at δ = 3.015Δx with C_HV = 0.05). It is an estimate, scaled by solver.safety_factor.)",
+the Taylor example, aluminium at δ = 3.015Δx with C_HV = 0.05), and with a linear bulk viscosity by √(1 + C_l²) − C_l
+(the quadratic term, which grows with the compression rate, is left to the safety factor). It is an estimate,
+scaled by solver.safety_factor.)",
     .restrictions = R"(- 3D only.
 - Bonds break only through a law's johnson_cook_damage; a critical-stretch or energy `damage` section is refused.
 - Influence-function damage: a bond between two points that are both damaged but not failed keeps a weight of

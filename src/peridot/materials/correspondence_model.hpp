@@ -20,6 +20,8 @@ struct CorrespondenceModel : ModelBase {
     correspondence::AnyLaw law;        ///< the constitutive law, with its parameters
     double hourglass_coefficient = 0;  ///< C_HG (-)
     double hourglass_viscosity = 0;    ///< C_HV (-)
+    double bulk_viscosity_linear = 0;     ///< C_l (-)
+    double bulk_viscosity_quadratic = 0;  ///< C_q (-)
   };
   /// Also sets the block's stable micromodulus and bond dashpot (the stable time step, see the page).
   static Params resolve(const MaterialSpec& spec, const Problem& problem, MaterialParams& block);

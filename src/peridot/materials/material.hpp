@@ -42,6 +42,9 @@ struct MaterialParams {
   /// Bond dashpot of the same sums (N s/m⁶), 0 unless the model has one (correspondence hourglass
   /// damping). It shortens the stable time step (stable_time_step in solvers/internal_force.hpp).
   double stable_damping = 0;
+  /// Linear bulk viscosity C_l (-), 0 unless the model has one (correspondence): the damping ratio it gives
+  /// the highest mode, which shortens the stable time step by √(1 + C_l²) − C_l (stable_time_step).
+  double stable_bulk_viscosity = 0;
 };
 
 /// Most per-point and per-bond arrays a model may declare (static_assert in materials/models.hpp), and how many

@@ -838,6 +838,11 @@ double stable_time_step(const ModelContext& ctx) {
         const double zeta = p.stable_damping / p.stable_micromodulus / dt_i;
         dt_i *= std::sqrt(1 + zeta * zeta) - zeta;
       }
+      // A linear bulk viscosity q = C_l ρ c ℓ |tr D| damps the highest mode with ratio C_l (the hydrocodes'
+      // Δt = ℓ/(Q + √(Q² + c²)), Q = C_l c). Its quadratic part grows with the compression rate and is left
+      // to the safety factor.
+      if (p.stable_bulk_viscosity > 0)
+        dt_i *= std::sqrt(1 + p.stable_bulk_viscosity * p.stable_bulk_viscosity) - p.stable_bulk_viscosity;
       dt = std::min(dt, dt_i);
     }
   }
