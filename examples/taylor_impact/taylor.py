@@ -380,8 +380,12 @@ def plot_damage(runs, path):
         xs, zs, ds = y[0][half][order[::-1]], y[2][half][order[::-1]], D[half][order[::-1]]
         alive = ds < 1
         sc = ax.scatter(xs[alive] * mm, zs[alive] * mm, c=ds[alive], s=4, cmap="viridis", vmin=0, vmax=1)
-        ax.scatter(xs[~alive] * mm, zs[~alive] * mm, s=4, c="red", label=f"failed (D = 1): {(D >= 1).sum()} points")
+        outside = (np.abs(y[0]) > 1.6 * D0) | (y[2] > 0.45 * x[2].max())
+        ax.scatter(xs[~alive] * mm, zs[~alive] * mm, s=4, c="red",
+                   label=f"failed (D = 1): {(D >= 1).sum()} of {len(D)} points; {int(outside.sum())} outside the frame")
         ax.set_aspect("equal")
+        # the rod's lower part; failed points thrown further are counted in the legend, not drawn to scale
+        ax.set_xlim(-1.6 * D0 * mm, 1.6 * D0 * mm)
         ax.set_ylim(-1, 0.45 * (x[2].max()) * mm)
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("z (mm), anvil at z = 0")
