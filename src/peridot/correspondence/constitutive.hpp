@@ -112,8 +112,9 @@ inline double elastic_energy_density(const Mat3& tau, double jacobian, double bu
 /// one as hydrocodes apply it (Wilkins 1980; LS-DYNA's Q1, Q2): a pressure
 ///   q = ℓ (b_q ℓ (tr D)² − b_l tr D)  while the point is compressed (tr D < 0), 0 otherwise,
 /// b_q = C_q ρ, b_l = C_l ρ c (c the P-wave speed), ℓ the point's size (V^(1/3)), added to the law's stress as
-/// −q I. It spreads a shock over a few points and damps the ringing behind it, which otherwise throws the
-/// material behind a strong shock into spurious tension. It is not part of the law's state (τ): its work
+/// −q I. It spreads a shock over a few points and damps the oscillation behind it; it acts only in compression,
+/// so it does little for the ringing of a free surface after a release (docs/correspondence.md, "Not yet
+/// done"). It is not part of the law's state (τ): its work
 /// J q (−tr D) Δt per reference volume is dissipated. Returns q (Pa); tr D = tr d (d = Rᵀ D R).
 inline double bulk_viscous_pressure(double trace_rate, double size, double linear, double quadratic) {
   if (!(trace_rate < 0)) return 0;

@@ -115,10 +115,9 @@ CorrespondenceBlocks::CorrespondenceBlocks(const Problem& problem, const ModelCo
   m.ctx = make_correspondence_context(*model.disc, *model.bonds, geometry, model.partial_volume_radius);
   for (std::size_t b : m.block_index) {
     const MaterialParams& p = model.params[b];
-    const double coefficient = model.model_params_of<CorrespondenceModel>(b).hourglass_coefficient;
-    m.ctx.hourglass_stiffness[b] = hourglass_stiffness(coefficient, p.elastic.bulk_modulus, p.horizon);
-    m.ctx.hourglass_damping[b] = p.stable_damping;  // hourglass_damping(C_HV, ρ, K, δ): CorrespondenceModel::resolve
     const CorrespondenceModel::Params& own = model.model_params_of<CorrespondenceModel>(b);
+    m.ctx.hourglass_stiffness[b] = hourglass_stiffness(own.hourglass_coefficient, p.elastic.bulk_modulus, p.horizon);
+    m.ctx.hourglass_damping[b] = p.stable_damping;  // hourglass_damping(C_HV, ρ, K, δ): CorrespondenceModel::resolve
     const double wave_speed = std::sqrt((p.elastic.bulk_modulus + 4 * p.elastic.shear_modulus / 3) / p.density);
     m.ctx.bulk_viscosity_linear[b] = own.bulk_viscosity_linear * p.density * wave_speed;
     m.ctx.bulk_viscosity_quadratic[b] = own.bulk_viscosity_quadratic * p.density;
