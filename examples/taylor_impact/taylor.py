@@ -126,7 +126,9 @@ def measure(exodus_path, spacing):
     face_area = cofactor[first_layer].sum() / first_layer.sum()
     with pr.Results(exodus_path) as res:
         damage = res.field("material_damage") if "material_damage" in res.names else np.zeros(len(eqps))
-    return {"failed": int((damage >= 1).sum()), "max_damage": float(damage.max()),
+        temperature = res.field("temperature") if "temperature" in res.names else None
+    return {"max_t": None if temperature is None else float(temperature.max()),
+            "failed": int((damage >= 1).sum()), "max_damage": float(damage.max()),
             "lf": length / length0, "df": float(np.sqrt(face_area)), "face_cell": face_cell, "face_centres": face,
             "widest_centres": widest, "eqps": float(eqps.max())}
 
@@ -178,6 +180,25 @@ SETS = {
     # above the speed at which the L0/D0 = 5 rods of paper 000's experiments failed at the impact end (363 m/s):
     # with --damage the mushroom edge cracks (README, "High-speed failure"); 20 across, to 60 µs
     "failure": [(f"fail_{v}", 20, 3.015, 5, v, 60) for v in (295, 400, 450)],
+    # Df/D0 at a fixed horizon δ with Δx refined (δ-convergence), 295 m/s, to 50 µs: δ = 1.525 mm (conv_n20_d4's)
+    # at 10 and 15 across, δ = 1.145 mm (conv_n20_d3's) at 15 across, δ = 0.572 mm (conv_n40_d3's) at 30 across
+    # and larger horizons at 15 across (δ = 2.025 and 2.532 mm); about 10 min in all
+    "horizon": [("fixd_n10_d2", 10, 2.0075, 5, 295, 50), ("fixd_n15_d3", 15, 3.0113, 5, 295, 50),
+                ("fixd_n15_d2", 15, 2.2613, 5, 295, 50), ("fixd_n30_d2", 30, 2.2613, 5, 295, 50),
+                ("fixd_n15_d4", 15, 4.0, 5, 295, 50), ("fixd_n15_d5", 15, 5.0, 5, 295, 50)],
+    # δ = 0.458 mm (conv_n50_d3's) at 30 and 40 across, to 50 µs: at these δ/Δx a point of the face layer next to
+    # the axis turns inside out soon after the anvil lets go (50.3 µs at 30 across, 50.7 µs at 40; README)
+    "horizon_small": [("fixd_n30_d1", 30, 1.809, 5, 295, 50), ("fixd_n40_d2", 40, 2.412, 5, 295, 50)],
+    # δ = 0.344 mm (1.809Δx at 40 across), to 44 µs: a face-layer point next to the axis turns inside out at 44.5 µs
+    "horizon_smaller": [("fixd_n40_d1", 40, 1.809, 5, 295, 44)],
+    # every shot of the issue at δ = 0.458 mm (1.809Δx, 30 across): about 5 min per L0/D0 = 5 shot on two threads
+    "horizon_shots": [("h458_ld5_170", 30, 1.809, 5, 170, 50), ("h458_ld5_244", 30, 1.809, 5, 244, 50),
+                      ("fixd_n30_d1", 30, 1.809, 5, 295, 50), ("h458_ld2_240", 30, 1.809, 2, 240, 50),
+                      ("h458_ld10_256", 30, 1.809, 10, 256, 95)],
+    # the same at 40 across (2.412Δx): with Johnson–Cook, 30 across (1.809Δx) melts the centre of the impact face
+    "horizon_shots40": [("h458_n40_ld5_170", 40, 2.412, 5, 170, 50), ("h458_n40_ld5_244", 40, 2.412, 5, 244, 50),
+                        ("fixd_n40_d2", 40, 2.412, 5, 295, 50), ("h458_n40_ld2_240", 40, 2.412, 2, 240, 50),
+                        ("h458_n40_ld10_256", 40, 2.412, 10, 256, 95)],
     # sensitivity of Df/D0 to the hourglass coefficient (a study, one shot; not a per-shot setting)
     "hourglass": [(f"hg{c}_n20_d3", 20, 3.015, 5, 244, 50, c) for c in (0.01, 0.02, 0.05)],
 }
@@ -217,11 +238,17 @@ def main():
     p.add_argument("--plot", help="write a figure of Lf/L0 and Df/D0 against the experiment")
     p.add_argument("--profile", help="write a figure of the final profile of one shot of the set (see --profile-shot)")
     p.add_argument("--profile-shot", default="ld5_244", help="the shot drawn by --profile (default ld5_244)")
+    p.add_argument("--horizon-plot", metavar="PNG",
+                   help="write the figure of Df/D0 against the horizon δ at 295 m/s from the measured runs in "
+                        "data/df_against_horizon.csv (README, \"What Df/D0 depends on\") and exit; runs nothing")
     p.add_argument("--reuse", action="store_true", help="measure existing runs instead of running again")
     p.add_argument("--only", help="comma-separated shot names of the set to run (default: all of them)")
     p.add_argument("--check-short", action="store_true",
                    help="exit 1 unless the short run's Lf/L0 is in [0.83, 0.89] and its energy balance within 1 %%")
     a = p.parse_args()
+    if a.horizon_plot:
+        plot_horizon(os.path.join(HERE, "data", "df_against_horizon.csv"), a.horizon_plot)
+        return 0
     template = open(os.path.join(HERE, "deck.yaml")).read()
     deck_hourglass = float(re.search(r"hourglass_coefficient: ([0-9.eE+-]+)", template).group(1))
     shots = experiment(a.data) if os.path.exists(a.data) else []
@@ -252,6 +279,8 @@ def main():
                 f"{m['face_centres']:.4f}, widest {m['widest_centres']:.4f})  max εp={m['eqps']:.3f}  energy balance "
                 f"{100 * balance:+.2f} % (KE left {100 * ke_left:.2f} %, plastic {100 * plastic:.1f} %, hourglass "
                 f"{100 * hourglass:.2f} %)")
+        if m["max_t"] is not None:
+            line += f"  max T {m['max_t']:.1f} K"
         if a.damage:
             line += f"  max D {m['max_damage']:.3f}, {m['failed']} failed points"
         if exp:
@@ -310,6 +339,45 @@ def plot(results, shots, path, thermal=True):
     axes[0].set_title(f"Peridot, C_HG = {results[0]['chg']:g}, {heating}\nx: 20 across, δ = 3Δx; "
                       "+: 30 across or δ = 4Δx; *: 40 and 50 across", fontsize=8)
     axes[1].set_title("Df: area-equivalent diameter of the face layer", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
+def plot_horizon(data_path, path):
+    """Df/D0 and the largest εp against the horizon δ (log scale), one marker per run, coloured by the points across
+    the diameter; the runs at δ = 3.015Δx joined by a line, and the runs at one δ and different Δx side by side."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = list(csv.DictReader(line for line in open(data_path) if not line.startswith("#")))
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    colours = {10: "C0", 15: "C1", 20: "C2", 30: "C3", 40: "C4", 50: "C5"}
+    for ax, key, label in ((axes[0], "Df_over_D0", "Df/D0"), (axes[1], "max_eqps", "largest εp")):
+        measured = [r for r in rows if r[key]]
+        fixed_m = sorted((float(r["horizon_mm"]), float(r[key])) for r in measured
+                         if abs(float(r["horizon_factor"]) - 3.015) < 1e-3)
+        ax.plot(*zip(*fixed_m), "-", color="0.6", lw=1, zorder=1, label="δ = 3.015Δx (Δx and δ refined together)")
+        for r in measured:
+            m = float(r["horizon_factor"])
+            marker = "v" if m < 2.0 else "s" if m < 2.5 else "o" if m < 3.5 else "^"
+            ax.plot(float(r["horizon_mm"]), float(r[key]), marker, color=colours.get(int(r["across"]), "k"), ms=7,
+                    mfc="none" if m < 2.5 else colours.get(int(r["across"]), "k"), zorder=2)
+        ax.set_xscale("log")
+        ax.set_xticks([0.3, 0.5, 0.7, 1, 1.5, 2, 3])
+        ax.set_xticklabels(["0.3", "0.5", "0.7", "1", "1.5", "2", "3"])
+        ax.minorticks_off()
+        ax.set_xlim(0.25, 3)
+        ax.set_xlabel("horizon δ (mm)")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    axes[0].axhline(1.7775, color="k", ls="--", lw=1, label="House et al. 1995 (shot at 295 m/s)")
+    for n, c in colours.items():
+        axes[0].plot([], [], "o", color=c, label=f"{n} points across")
+    axes[0].set_ylim(1.2, 1.8)
+    axes[0].legend(fontsize=7, loc="lower left", ncol=2)
+    axes[0].set_title("Taylor rod, L0/D0 = 5, 295 m/s, J2 viscoplastic (Foster), symmetry anvil\n"
+                      "markers: ▼ δ = 1.8Δx, □ 2.0–2.4Δx, ● 3Δx, ▲ 4–5Δx", fontsize=8)
+    axes[1].set_title("largest equivalent plastic strain (centre of the impact face)", fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
 

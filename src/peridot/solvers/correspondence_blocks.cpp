@@ -457,6 +457,40 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
     }, any);
 }
 
+CorrespondenceBlocks::Extremes CorrespondenceBlocks::extremes() const {
+  const Impl& m = *impl_;
+  const Discretization& disc = *m.model->disc;
+  auto id = [&](std::size_t i) { return disc.input_id.empty() ? i : static_cast<std::size_t>(disc.input_id[i]); };
+  // The larger value wins, and of equal values the smaller input id, so that any rank count picks the same point.
+  auto better = [&](double value, std::size_t i, double best, std::size_t at) {
+    return at == Extremes::none || value > best || (value == best && id(i) < id(at));
+  };
+  Extremes e;
+  for (const AnyBlock& any : m.blocks)
+    std::visit([&](const auto& block) {
+      if constexpr (requires { block.history[0].equivalent_plastic_strain; }) {  // the plastic laws
+        const std::size_t begin = block.range.begin;
+        for (std::size_t i = begin; i < block.range.end; ++i) {
+          const auto& h = block.history[i - begin];
+          if (better(h.equivalent_plastic_strain, i, e.max_plastic_strain, e.plastic_point)) {
+            e.max_plastic_strain = h.equivalent_plastic_strain;
+            e.plastic_point = i;
+          }
+          if constexpr (requires { block.law.thermal.enabled; }) {
+            if (!block.law.thermal.enabled) continue;
+            const double T = block.law.thermal.reference_temperature + h.temperature_rise;
+            if (better(T, i, e.max_temperature, e.hot_point)) {
+              e.max_temperature = T;
+              e.hot_point = i;
+            }
+            if (block.law.thermal.homologous(h.temperature_rise) >= 0.99) ++e.near_melting;
+          }
+        }
+      }
+    }, any);
+  return e;
+}
+
 bool any_material_damage(const ModelContext& model) {
   for (std::size_t b = 0; b < model.params.size(); ++b)
     if (is_model<CorrespondenceModel>(model.params[b]) &&

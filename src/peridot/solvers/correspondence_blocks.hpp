@@ -12,6 +12,7 @@
 // neighbour's bond force has no counterpart in P K⁻¹. Two correspondence blocks may share bonds.
 // Rigid walls with contact: symmetry add bonds to mirror images (correspondence/mirror_bonds.hpp), released
 // here when the body leaves the wall.
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -64,6 +65,20 @@ class CorrespondenceBlocks {
   /// Fills state.point_outputs (names: output_field_names(), and `temperature` (K) when
   /// any_thermal_softening) and history.plastic_strain (ε̄p of J2).
   void write_point_outputs(State& state) const;
+
+  /// The largest equivalent plastic strain and the highest temperature over this rank's points (laws with a
+  /// plastic strain; temperatures where the law has thermal softening), each with its point (ties: the smallest
+  /// input id), and how many points have come within 1 % of their law's melting temperature, T* ≥ 0.99, where
+  /// the flow stress is all but gone (thermal_softening.hpp). For the run's closing summary.
+  struct Extremes {
+    static constexpr std::size_t none = static_cast<std::size_t>(-1);
+    double max_plastic_strain = 0;
+    std::size_t plastic_point = none;  ///< local index; none: no point with a plastic strain
+    double max_temperature = 0;        ///< K
+    std::size_t hot_point = none;      ///< local index; none: no point with a temperature
+    std::uint64_t near_melting = 0;
+  };
+  Extremes extremes() const;
 
   /// Force density (N/m³, 3 per owned point) of the mirror bonds of rigid wall `wall` (contact: symmetry)
   /// on each point at the last force computation: zero for other walls and once released

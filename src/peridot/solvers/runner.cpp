@@ -581,6 +581,11 @@ void Run::finish() {
   run.close_results(true);
   run.log.line(fmt::format("done: {} steps to t = {:.6g} s in {:.2f} s", sim.state().step, sim.state().time,
                            run.progress.elapsed()));
+  for (const std::string& line : sim.plasticity_summary()) {
+    run.log.line(line);
+    // quiet runs still hear about it
+    if (line.starts_with("warning") && !run.options.log && run.comm.is_root()) std::cerr << line << '\n';
+  }
   if (const ShortRangeContact* contact = sim.short_range())
     run.log.line(fmt::format("contact: {} pair-list builds in {:.2f} s, pair forces {:.2f} s; {} pairs listed at the end (rank 0)",
                              contact->builds(), contact->build_seconds(), contact->compute_seconds(), contact->pairs()));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -480,6 +481,47 @@ void Simulation::gather_field(const double* local, int components, std::vector<d
   global.resize(c * global_disc_.num_points());
   for (std::size_t k = 0; k < gathered_index_.size(); ++k)
     for (std::size_t d = 0; d < c; ++d) global[c * gathered_index_[k] + d] = gathered[c * k + d];
+}
+
+std::vector<std::string> Simulation::plasticity_summary() const {
+  if (!has_correspondence()) return {};
+  const CorrespondenceBlocks::Extremes e = correspondence_->extremes();
+  constexpr double far = std::numeric_limits<double>::infinity();
+  // The global extreme, then the smallest input id holding it, then that point's reference position: each a
+  // reduction, taken from the rank that owns the point.
+  struct Where {
+    bool found = false;
+    double value = 0, id = 0;
+    Vec3 x;
+  };
+  auto locate = [&](double value, std::size_t point) {
+    const bool have = point != CorrespondenceBlocks::Extremes::none;
+    Where w;
+    w.found = comm_.any(have);
+    if (!w.found) return w;
+    w.value = comm_.max(have ? value : -far);
+    const double id = have ? static_cast<double>(disc_.input_id.empty() ? point : disc_.input_id[point]) : far;
+    const bool candidate = have && value == w.value;
+    w.id = comm_.min(candidate ? id : far);
+    for (int d = 0; d < 3; ++d) w.x[d] = comm_.min(candidate && id == w.id ? disc_.x(point, d) : far);
+    return w;
+  };
+  const Where plastic = locate(e.max_plastic_strain, e.plastic_point);
+  const Where hot = locate(e.max_temperature, e.hot_point);
+  const std::uint64_t near_melting = comm_.sum(e.near_melting);
+  if (!plastic.found) return {};
+  auto at = [](const Where& w) {
+    return fmt::format("input id {:.0f}, reference position ({:g}, {:g}, {:g}) m", w.id, w.x.x, w.x.y, w.x.z);
+  };
+  std::vector<std::string> lines = {
+      fmt::format("plasticity: largest equivalent plastic strain {:.6g} at {}", plastic.value, at(plastic))};
+  if (hot.found) lines.push_back(fmt::format("plasticity: highest temperature {:.6g} K at {}", hot.value, at(hot)));
+  if (near_melting > 0)
+    lines.push_back(fmt::format(
+        "warning: {} point{} came within 1 % of the melting temperature (T* ≥ 0.99), where the flow stress is all "
+        "but zero: there the law no longer describes a solid (a thermal runaway: softening outpacing hardening)",
+        near_melting, near_melting == 1 ? "" : "s"));
+  return lines;
 }
 
 Totals Simulation::totals() {

@@ -160,6 +160,12 @@ class Simulation {
   /// The correspondence blocks (symmetry walls, fields); meaningful when has_correspondence().
   const CorrespondenceBlocks& correspondence() const { return *correspondence_; }
 
+  /// Lines for the run's log at its end (empty without a plastic correspondence law): the largest equivalent
+  /// plastic strain and the highest temperature, each with its point, and a warning when points have come
+  /// within 1 % of their melting temperature (CorrespondenceBlocks::extremes). Collective; the same lines on
+  /// every rank, for any rank count.
+  std::vector<std::string> plasticity_summary() const;
+
   /// Computes what the outputs read, which the step keeps only as far as it needs (damage, fragment labels,
   /// and with `fields` the dilatation and correspondence fields of an Exodus frame, with `totals` the
   /// per-point terms of the totals) and, distributed, gathers them to rank 0. Collective.
