@@ -68,8 +68,8 @@ class CorrespondenceBlocks {
 
   /// The largest equivalent plastic strain and the highest temperature over this rank's points (laws with a
   /// plastic strain; temperatures where the law has thermal softening), each with its point (ties: the smallest
-  /// input id), and how many points have come within 1 % of their law's melting temperature, T* ≥ 0.99, where
-  /// the flow stress is all but gone (thermal_softening.hpp). For the run's closing summary.
+  /// input id), and how many points have heated 99 % of the way to their law's melting temperature (T* ≥ 0.99),
+  /// where the flow stress is all but gone (thermal_softening.hpp). For the run's closing summary.
   struct Extremes {
     static constexpr std::size_t none = static_cast<std::size_t>(-1);
     double max_plastic_strain = 0;

@@ -518,8 +518,9 @@ std::vector<std::string> Simulation::plasticity_summary() const {
   if (hot.found) lines.push_back(fmt::format("plasticity: highest temperature {:.6g} K at {}", hot.value, at(hot)));
   if (near_melting > 0)
     lines.push_back(fmt::format(
-        "warning: {} point{} came within 1 % of the melting temperature (T* ≥ 0.99), where the flow stress is all "
-        "but zero: there the law no longer describes a solid (a thermal runaway: softening outpacing hardening)",
+        "warning: {} point{} heated to T* ≥ 0.99 (99 % of the way from the reference to the melting temperature), "
+        "where the flow stress is all but zero: there the law no longer describes a solid (a thermal runaway: "
+        "softening outpacing hardening)",
         near_melting, near_melting == 1 ? "" : "s"));
   return lines;
 }

@@ -161,9 +161,9 @@ class Simulation {
   const CorrespondenceBlocks& correspondence() const { return *correspondence_; }
 
   /// Lines for the run's log at its end (empty without a plastic correspondence law): the largest equivalent
-  /// plastic strain and the highest temperature, each with its point, and a warning when points have come
-  /// within 1 % of their melting temperature (CorrespondenceBlocks::extremes). Collective; the same lines on
-  /// every rank, for any rank count.
+  /// plastic strain and the highest temperature, each with its point, and a warning when points have heated to
+  /// T* ≥ 0.99, 99 % of the way to the melting temperature (CorrespondenceBlocks::extremes). Collective; the
+  /// same lines on every rank, for any rank count.
   std::vector<std::string> plasticity_summary() const;
 
   /// Computes what the outputs read, which the step keeps only as far as it needs (damage, fragment labels,
