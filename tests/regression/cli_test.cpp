@@ -11,6 +11,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <system_error>
 
 #include <chrono>
 #include <csignal>
@@ -51,8 +52,23 @@ std::string read_file(const fs::path& path) {
   return text.str();
 }
 
+// This process's scratch folder, removed when the process ends with every test passed (a failure leaves it to be
+// looked at): ctest runs each test in a process of its own.
+const fs::path& scratch_root() {
+  static const struct Root {
+    fs::path path = fs::temp_directory_path() / ("peridot_cli_" + std::to_string(::getpid()));
+    ~Root() {
+      if (::testing::UnitTest::GetInstance()->Passed()) {
+        std::error_code ignored;
+        fs::remove_all(path, ignored);
+      }
+    }
+  } root;
+  return root.path;
+}
+
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("peridot_cli_" + std::to_string(::getpid())) / name;
+  const fs::path dir = scratch_root() / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
