@@ -352,16 +352,25 @@ def plot_horizon(data_path, path):
     rows = list(csv.DictReader(line for line in open(data_path) if not line.startswith("#")))
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
     colours = {10: "C0", 15: "C1", 20: "C2", 30: "C3", 40: "C4", 50: "C5"}
+    limits = {"Df_over_D0": (1.2, 1.85), "max_eqps": (0.6, 2.2)}
     for ax, key, label in ((axes[0], "Df_over_D0", "Df/D0"), (axes[1], "max_eqps", "largest εp")):
         measured = [r for r in rows if r[key]]
         fixed_m = sorted((float(r["horizon_mm"]), float(r[key])) for r in measured
-                         if abs(float(r["horizon_factor"]) - 3.015) < 1e-3)
-        ax.plot(*zip(*fixed_m), "-", color="0.6", lw=1, zorder=1, label="δ = 3.015Δx (Δx and δ refined together)")
+                         if abs(float(r["horizon_factor"]) - 3.015) < 1e-3 and r["law"] == "j2_viscoplastic")
+        ax.plot(*zip(*fixed_m), "-", color="0.6", lw=1, zorder=1, label="J2, δ = 3.015Δx (Δx and δ refined together)")
         for r in measured:
-            m = float(r["horizon_factor"])
+            m, value, colour = float(r["horizon_factor"]), float(r[key]), colours.get(int(r["across"]), "k")
+            if r["law"] == "johnson_cook":  # crosses, off-scale values (a thermal runaway) drawn at the top edge
+                top = limits[key][1]
+                ax.plot(float(r["horizon_mm"]), min(value, top), "X", color=colour, ms=9, zorder=3)
+                if value > top:
+                    ax.annotate(f"JC {r['across']} across: {value:g}\n(melting, off scale)",
+                                (float(r["horizon_mm"]), top), textcoords="offset points", xytext=(6, -22), fontsize=7)
+                continue
             marker = "v" if m < 2.0 else "s" if m < 2.5 else "o" if m < 3.5 else "^"
-            ax.plot(float(r["horizon_mm"]), float(r[key]), marker, color=colours.get(int(r["across"]), "k"), ms=7,
-                    mfc="none" if m < 2.5 else colours.get(int(r["across"]), "k"), zorder=2)
+            ax.plot(float(r["horizon_mm"]), value, marker, color=colour, ms=7,
+                    mfc="none" if m < 2.5 else colour, zorder=2)
+        ax.set_ylim(*limits[key])
         ax.set_xscale("log")
         ax.set_xticks([0.3, 0.5, 0.7, 1, 1.5, 2, 3])
         ax.set_xticklabels(["0.3", "0.5", "0.7", "1", "1.5", "2", "3"])
@@ -373,10 +382,10 @@ def plot_horizon(data_path, path):
     axes[0].axhline(1.7775, color="k", ls="--", lw=1, label="House et al. 1995 (shot at 295 m/s)")
     for n, c in colours.items():
         axes[0].plot([], [], "o", color=c, label=f"{n} points across")
-    axes[0].set_ylim(1.2, 1.8)
+    axes[0].plot([], [], "X", color="0.3", ms=8, label="Johnson–Cook")
     axes[0].legend(fontsize=7, loc="lower left", ncol=2)
-    axes[0].set_title("Taylor rod, L0/D0 = 5, 295 m/s, J2 viscoplastic (Foster), symmetry anvil\n"
-                      "markers: ▼ δ = 1.8Δx, □ 2.0–2.4Δx, ● 3Δx, ▲ 4–5Δx", fontsize=8)
+    axes[0].set_title("Taylor rod, L0/D0 = 5, 295 m/s, J2 viscoplastic (Foster) and Johnson–Cook (X), symmetry anvil\n"
+                      "J2 markers: ▼ δ = 1.8Δx, □ 2.0–2.4Δx, ● 3Δx, ▲ 4–5Δx", fontsize=8)
     axes[1].set_title("largest equivalent plastic strain (centre of the impact face)", fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
