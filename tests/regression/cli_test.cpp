@@ -385,9 +385,9 @@ TEST(Cli, CorrespondenceInvertedDeformationExitsThree) {
 }
 
 // The log closes with the largest εp and the highest temperature of a plastic correspondence run, and warns (on
-// stderr too, for a quiet run) when points heat to T* ≥ 0.99 (99 % of the way to the melting temperature): here the Johnson–Cook bar
-// of the damage tests with its melting point lowered to 2 K above the initial temperature and a softening exponent
-// of 5 (Θ = 1 − T*⁵ falls fast near T_m, so T* passes 0.99 within the few per cent of strain the bar reaches).
+// stderr too, for a quiet run) when points heat to T* ≥ 0.99 (99 % of the way to the melting temperature): here
+// the Johnson–Cook bar of the damage tests with its melting point lowered to 2 K above the initial temperature and
+// a softening exponent of 5 (Θ = 1 − T*⁵ falls fast near T_m, so T* passes 0.99 within the few per cent of strain the bar reaches).
 TEST(Cli, PlasticRunNamesItsHottestPointAndWarnsOfMelting) {
   const std::string deck_text = read_file(source / "tests" / "regression" / "decks" / "jc_damage_small.yaml");
   const std::regex end_time("  end_time: 30 us"), melting("melting_temperature: 925 K, exponent: 1.34");

@@ -142,7 +142,7 @@ ExodusWriter::ExodusWriter(const std::string& path, const Discretization& disc,
   // Node ids: generation order + 1 where known, else point index + 1; they must be unique for readers.
   std::vector<int> node_id(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t id = disc.input_id.empty() ? i + 1 : std::size_t{disc.input_id[i]} + 1;
+    const std::size_t id = disc.id_of(i) + 1;
     PERIDOT_REQUIRE(id <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
                     "disc.input_id does not fit a 32-bit Exodus id");
     node_id[i] = static_cast<int>(id);

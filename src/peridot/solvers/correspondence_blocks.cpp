@@ -460,10 +460,9 @@ void CorrespondenceBlocks::write_point_outputs(State& state) const {
 CorrespondenceBlocks::Extremes CorrespondenceBlocks::extremes() const {
   const Impl& m = *impl_;
   const Discretization& disc = *m.model->disc;
-  auto id = [&](std::size_t i) { return disc.input_id.empty() ? i : static_cast<std::size_t>(disc.input_id[i]); };
   // The larger value wins, and of equal values the smaller input id, so that any rank count picks the same point.
   auto better = [&](double value, std::size_t i, double best, std::size_t at) {
-    return at == Extremes::none || value > best || (value == best && id(i) < id(at));
+    return at == Extremes::none || value > best || (value == best && disc.id_of(i) < disc.id_of(at));
   };
   Extremes e;
   for (const AnyBlock& any : m.blocks)

@@ -210,7 +210,7 @@ std::string DynamicRelaxation::unsupported_fragment() {
       f.force[d] += state.body_force.data()[k] * disc.volume[i];
       f.magnitude += std::abs(state.body_force.data()[k]) * disc.volume[i];
     }
-    if (static_cast<double>(disc.input_id.empty() ? i : disc.input_id[i]) == f.label) {
+    if (static_cast<double>(disc.id_of(i)) == f.label) {
       const Vec3 x = disc.x.get(i);
       f.named_here = 1, f.x[0] = x.x, f.x[1] = x.y, f.x[2] = x.z;
     }

@@ -500,7 +500,7 @@ std::vector<std::string> Simulation::plasticity_summary() const {
     w.found = comm_.any(have);
     if (!w.found) return w;
     w.value = comm_.max(have ? value : -far);
-    const double id = have ? static_cast<double>(disc_.input_id.empty() ? point : disc_.input_id[point]) : far;
+    const double id = have ? static_cast<double>(disc_.id_of(point)) : far;
     const bool candidate = have && value == w.value;
     w.id = comm_.min(candidate ? id : far);
     for (int d = 0; d < 3; ++d) w.x[d] = comm_.min(candidate && id == w.id ? disc_.x(point, d) : far);
@@ -556,7 +556,7 @@ Totals Simulation::output_totals() const {
   if (all_bonds_ > 0) totals.broken_fraction = static_cast<double>(broken_bonds_) / static_cast<double>(all_bonds_);
   // A fragment is named by the smallest input id of its points: count the points that name their own.
   for (std::size_t i = 0; i < n; ++i)
-    if (s.fragment[i] == static_cast<double>(disc.input_id.empty() ? i : disc.input_id[i])) ++totals.fragments;
+    if (s.fragment[i] == static_cast<double>(disc.id_of(i))) ++totals.fragments;
   totals.external_work = deterministic_sum(n, [&](std::size_t i) { return work[i]; });
   if (has_contact()) {
     const std::vector<double>& energy = comm_.serial() ? contact_energy_ : global_contact_energy_;

@@ -41,6 +41,8 @@ struct Discretization {
   std::vector<double> volume;    ///< V (m³; in 2D, area × thickness)
   std::vector<std::int32_t> block;     ///< body (block) index
   std::vector<std::uint32_t> input_id; ///< order of generation, before the space-filling-curve reorder
+  /// Input id of point i: i itself where the points were never reordered (input_id empty).
+  std::size_t id_of(std::size_t i) const { return input_id.empty() ? i : std::size_t{input_id[i]}; }
   std::vector<std::string> block_names;
   /// The named sets of the bodies' meshes (node, side and element sets) as the points they select, by input id;
   /// one entry per body and set (geometry/mesh.hpp, mesh_point_sets). Node sets refer to them by name (mesh_set).
