@@ -18,83 +18,23 @@
 namespace peridot {
 
 SolverInfo DynamicRelaxation::info() {
-  return {.name = name,
+  SolverInfo info{.name = name,
           .summary = "static equilibrium in load steps",
           .description = "adaptive dynamic relaxation (Kilic & Madenci 2010) to static equilibrium in load steps; "
                          "after each equilibrium the bonds over their threshold break and the step is relaxed again "
                          "until none breaks (or once: breaking); one Exodus frame and history row per load step "
                          "(docs/algorithms.md)",
-          .keys = {{.key = "load_steps", .type = ValueType::integer, .default_yaml = "1", .range = at_least_one,
-                    .description = "number of load steps N; step k is solved at t_k = k·end_time/N"},
-                   {.key = "end_time", .unit = Unit::time, .default_yaml = "1 s", .range = positive,
-                    .description = "time of the last load step (s): where time-dependent loads are evaluated, and the "
-                                   "real time over which viscous and rate-dependent materials relax"},
-                   {.key = "ramp", .type = ValueType::boolean, .default_yaml = "true",
-                    .description = "scale prescribed displacements and body forces by the load factor k/N (false: take "
-                                   "them as the expressions give them at t_k)"},
-                   {.key = "load_history", .type = ValueType::choice, .default_yaml = "continuous",
-                    .description = "continuous: each step's loads are those of t_k; steps: the loads jump at the load "
-                                   "step times and hold between them (creep and relaxation tests): t = 0 is solved with "
-                                   "no time passing, and each step first creeps over Δt under the previous loads, then "
-                                   "takes its own with no time passing",
-                    .choices = {"continuous", "steps"}},
-                   {.key = "creep_substeps", .type = ValueType::integer, .default_yaml = "1", .range = at_least_one,
-                    .description = "load_history: steps only: the creep over the step after a load jump is solved in "
-                                   "this many equilibria, each twice as long as the one before (the first Δt/(2ⁿ − 1)), "
-                                   "so that a relaxation time far below Δt is followed after the jump; the other steps "
-                                   "are solved whole, and each load step still gives one output"},
-                   {.key = "breaking", .type = ValueType::choice, .default_yaml = "until_stable",
-                    .description = "until_stable: after each equilibrium the bonds over their threshold break and the "
-                                   "step is relaxed again until none breaks (the quasi-static answer); once_per_step: "
-                                   "one breaking pass per load step, then one more equilibrium, as Madenci & Oterkus "
-                                   "do: a crack then advances by a few bonds per step, so how far it runs by a given "
-                                   "time depends on the step",
-                    .choices = {"until_stable", "once_per_step"}},
-                   {.key = "tolerance", .default_yaml = "1e-8", .range = positive,
-                    .description = "equilibrium when the force residual on the free dofs is at most this fraction of the "
-                                   "largest of the support reactions, the applied body force, the step's initial "
-                                   "residual and the largest reaction or body force of the equilibria before "
-                                   "(Euclidean norms of f V)"},
-                   {.key = "max_iterations", .type = ValueType::integer, .default_yaml = "100000", .range = at_least_one,
-                    .description = "iterations allowed for one equilibrium; more ends the run with an error naming the "
-                                   "residual reached"},
-                   {.key = "density_factor", .default_yaml = "5", .range = {1, infinity, false, true},
-                    .description = "fictitious density as a multiple of the Gerschgorin bound ¼ Σ V c/ξ; raise it if the "
-                                   "iterations diverge"}},
+          .keys = load_step_keys("100000", "iterations allowed for one equilibrium; more ends the run with an error "
+                                                     "naming the residual reached"),
           .check = &DynamicRelaxation::check};
+  info.keys.push_back({.key = "density_factor", .default_yaml = "5", .range = {1, infinity, false, true},
+                       .description = "fictitious density as a multiple of the Gerschgorin bound ¼ Σ V c/ξ; raise it "
+                                      "if the iterations diverge"});
+  return info;
 }
 
-TimeIntegrator::Schedule DynamicRelaxation::schedule(const SolverSpec& solver, double /*stable_time_step*/) {
-  Schedule s;
-  s.steps = solver.parameters.integer("load_steps");
-  s.time_step = solver.parameters.number("end_time") / static_cast<double>(s.steps);
-  return s;
-}
-
-void DynamicRelaxation::check(const Problem& p, DeckContext& ctx) {
-  if (const Parameters::Entry* substeps = p.solver.parameters.find("creep_substeps");
-      substeps && substeps->number > 1 && p.solver.parameters.text("load_history") != "steps")
-    ctx.error(substeps->pos, "solver.creep_substeps",
-              "creep substeps follow a load jump, which only load_history: steps has; remove creep_substeps or "
-              "give load_history: steps");
-  for (const InitialConditionSpec& ic : p.initial_conditions)
-    if (ic.kind == InitialConditionSpec::Kind::velocity)
-      ctx.error(ic.pos, "initial_conditions",
-                "an initial velocity has no meaning for solver type 'relaxation' (static equilibrium); remove it "
-                "or use the explicit solver");
-  for (const BoundaryConditionSpec& bc : p.boundary_conditions)
-    if (bc.kind == BoundaryConditionSpec::Kind::velocity)
-      ctx.error(bc.pos, "boundary_conditions",
-                "a prescribed velocity has no meaning for solver type 'relaxation' (static equilibrium); prescribe "
-                "the displacement instead");
-  for (const RigidWallSpec& w : p.rigid_walls)
-    if (w.speed != 0)
-      ctx.error(w.pos, "rigid_walls." + w.name, "a moving wall is not supported with solver type 'relaxation'; give it speed 0");
-  for (const RigidBodySpec& b : p.rigid_bodies)
-    if (b.motion != RigidMotionKind::fixed)
-      ctx.error(b.pos, "rigid_bodies." + b.name,
-                "a moving or free rigid body is not supported with solver type 'relaxation'; remove its displacement "
-                "or mass (a fixed body)");
+void DynamicRelaxation::check(const Problem& problem, DeckContext& context) {
+  check_static(problem, context, name);
 }
 
 namespace {
@@ -104,14 +44,7 @@ constexpr double max_damping = 1.9;
 }  // namespace
 
 DynamicRelaxation::DynamicRelaxation(Simulation& sim)
-    : sim_(sim),
-      ramp_(sim.problem().solver.parameters.boolean("ramp")),
-      tolerance_(sim.problem().solver.parameters.number("tolerance")),
-      max_iterations_(sim.problem().solver.parameters.integer("max_iterations")),
-      density_factor_(sim.problem().solver.parameters.number("density_factor")),
-      stepped_loads_(sim.problem().solver.parameters.text("load_history") == "steps"),
-      break_once_per_step_(sim.problem().solver.parameters.text("breaking") == "once_per_step"),
-      creep_substeps_(static_cast<int>(sim.problem().solver.parameters.integer("creep_substeps"))) {
+    : QuasiStatic(sim), density_factor_(sim.problem().solver.parameters.number("density_factor")) {
   std::vector<double> k;
   stiffness_bound(sim_.model(), k);
   const double factor = density_factor_;
@@ -124,215 +57,7 @@ DynamicRelaxation::DynamicRelaxation(Simulation& sim)
   previous_force_.assign(dofs, 0.0);
 }
 
-void DynamicRelaxation::set_loads(double t, double factor) {
-  State& state = sim_.state();
-  Loads& loads = sim_.loads();
-  loads.apply_displacement_conditions(t, factor, state.u);
-  sim_.exchange_ghosts(state.u);
-  if (loads.has_body_force()) {
-    loads.evaluate_body_force(t, body_force_);
-    const double* b = body_force_.data();
-    double* out = state.body_force.data();
-    for (std::size_t k = 0; k < 3 * state.u.size(); ++k) out[k] = factor * b[k];
-  }
-}
-
-bool DynamicRelaxation::set_loads_and_compare(double t, double factor) {
-  State& state = sim_.state();
-  const VectorField u_before = state.u, body_before = state.body_force;
-  set_loads(t, factor);
-  const auto& kind = sim_.loads().dof_kinds();
-  bool changed = false;
-  for (std::size_t k = 0; k < 3 * sim_.num_owned() && !changed; ++k)
-    changed = (kind[k] != DofKind::free && state.u.data()[k] != u_before.data()[k]) ||
-              (sim_.loads().has_body_force() && state.body_force.data()[k] != body_before.data()[k]);
-  return sim_.communicator().any(changed);
-}
-
-void DynamicRelaxation::creep(double t, double dt) {
-  if (!loads_jumped_ || creep_substeps_ == 1) {
-    solve_and_commit(dt);
-    return;
-  }
-  State& state = sim_.state();
-  const double start = t - dt, first = dt / (std::ldexp(1.0, creep_substeps_) - 1);
-  double elapsed = 0;
-  for (int s = 0; s < creep_substeps_; ++s) {
-    const double h = s + 1 == creep_substeps_ ? dt - elapsed : std::ldexp(first, s);
-    elapsed += h;
-    state.time = s + 1 == creep_substeps_ ? t : start + elapsed;  // temperatures are those of the substep's end
-    solve_and_commit(h);
-  }
-}
-
-namespace {
-
-/// What unsupported_fragment sums over a fragment's points, as doubles so that ranks can gather it.
-struct FragmentSum {
-  double label = 0, points = 0;
-  double supported[3] = {0, 0, 0};  ///< 1 where some point has a prescribed dof or a contact force along that axis
-  double force[3] = {0, 0, 0};      ///< Σ b V
-  double magnitude = 0;             ///< Σ |b V|: a balanced load's net force is round-off of this
-  double named_here = 0, x[3] = {0, 0, 0};  ///< the point that names it (label = its input id), when counted here
-  static constexpr std::size_t fields = 13;
-
-  void append_to(std::vector<double>& flat) const {
-    flat.insert(flat.end(), {label, points, supported[0], supported[1], supported[2], force[0], force[1], force[2],
-                             magnitude, named_here, x[0], x[1], x[2]});
-  }
-  /// Adds another rank's sums of the same fragment (f: fields doubles written by append_to).
-  void merge(const double* f) {
-    label = f[0];
-    points += f[1];
-    for (int d = 0; d < 3; ++d) supported[d] = std::max(supported[d], f[2 + d]), force[d] += f[5 + d];
-    magnitude += f[8];
-    if (f[9] != 0) named_here = 1, x[0] = f[10], x[1] = f[11], x[2] = f[12];
-  }
-};
-
-}  // namespace
-
-std::string DynamicRelaxation::unsupported_fragment() {
-  sim_.relabel_fragments();
-  const State& state = sim_.state();
-  const Discretization& disc = sim_.discretization();
-  const auto& kind = sim_.loads().dof_kinds();
-  const bool body = sim_.loads().has_body_force(), contact = sim_.has_contact();
-  std::map<double, FragmentSum> local;
-  for (std::size_t i = 0; i < sim_.num_owned(); ++i) {
-    FragmentSum& f = local[state.fragment[i]];
-    f.label = state.fragment[i];
-    f.points += 1;
-    for (int d = 0; d < 3; ++d) {
-      const std::size_t k = 3 * i + static_cast<std::size_t>(d);
-      if (kind[k] != DofKind::free || (contact && sim_.contact_force().data()[k] != 0)) f.supported[d] = 1;
-      if (!body) continue;
-      f.force[d] += state.body_force.data()[k] * disc.volume[i];
-      f.magnitude += std::abs(state.body_force.data()[k]) * disc.volume[i];
-    }
-    if (static_cast<double>(disc.id_of(i)) == f.label) {
-      const Vec3 x = disc.x.get(i);
-      f.named_here = 1, f.x[0] = x.x, f.x[1] = x.y, f.x[2] = x.z;
-    }
-  }
-  std::vector<double> flat;
-  for (const auto& entry : local) entry.second.append_to(flat);
-  const std::vector<double> all = sim_.communicator().all_gather(flat);
-  std::map<double, FragmentSum> merged;  // in label order, whatever the ranks
-  for (std::size_t at = 0; at + FragmentSum::fields <= all.size(); at += FragmentSum::fields)
-    merged[all[at]].merge(&all[at]);
-  double total = 0;
-  for (const auto& entry : merged) total += entry.second.magnitude;
-  const FragmentSum* worst = nullptr;
-  double worst_force = 0;
-  std::size_t unsupported = 0;
-  for (const auto& [label, f] : merged) {
-    double free_force = 0;  // the net force along the axes it has no support on
-    for (int d = 0; d < 3; ++d)
-      if (f.supported[d] == 0) free_force = std::hypot(free_force, f.force[d]);
-    if (!(free_force > 1e-9 * total)) continue;
-    ++unsupported;
-    if (free_force > worst_force) worst_force = free_force, worst = &f;
-  }
-  if (worst == nullptr) return {};
-  return fmt::format(
-      "the body has come apart: {} fragment{} without support carr{} a net load, the largest {:.3g} N on {} points "
-      "(fragment of point {} at ({:g}, {:g}, {:g}) m), so no equilibrium exists",
-      unsupported, unsupported == 1 ? "" : "s", unsupported == 1 ? "ies" : "y", worst_force,
-      static_cast<std::uint64_t>(worst->points), static_cast<std::uint64_t>(worst->label), worst->x[0], worst->x[1],
-      worst->x[2]);
-}
-
-void DynamicRelaxation::initialize() {
-  sim_.apply_initial_state();
-  State& state = sim_.state();
-  set_loads(0.0, ramp_ ? 0.0 : 1.0);
-  std::fill(state.v.data(), state.v.data() + 3 * state.v.size(), 0.0);
-  load_factor_ = ramp_ ? 0.0 : 1.0;
-  committed_u_ = state.u;
-  accepted_body_force_ = VectorField(state.body_force.size());  // nothing acted before t = 0
-  if (stepped_loads_) {  // the loads of t = 0 act at once: the instantaneous equilibrium
-    iterations_ = 0;
-    broken_ = 0;
-    solve_and_commit(0.0);
-    loads_jumped_ = true;  // from nothing before t = 0
-    return;
-  }
-  std::string failure;
-  try {
-    sim_.evaluate(0.0, true);
-  } catch (const NumericalError& e) {
-    failure = e.what();
-  }
-  sim_.commit(0.0);
-  sim_.agree_on_failure(failure);
-  committed_u_ = state.u;
-  accepted_body_force_ = state.body_force;
-}
-
-void DynamicRelaxation::evaluate_residual_force(std::vector<double>& F) {
-  State& state = sim_.state();
-  const std::size_t dofs = 3 * sim_.num_owned();
-  if (sim_.has_correspondence()) set_step_velocity();  // the rate the stress update integrates
-  std::string failure;
-  try {
-    sim_.evaluate(solve_dt_, false);
-  } catch (const NumericalError& e) {
-    failure = e.what();
-  }
-  sim_.agree_on_failure(failure);
-  const auto& kind = sim_.loads().dof_kinds();
-  const double* f = state.force.data();
-#pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < dofs; ++k) F[k] = kind[k] == DofKind::free ? f[k] + applied_force(k) : 0.0;
-}
-
-double DynamicRelaxation::applied_force(std::size_t k) const {
-  const double b = sim_.loads().has_body_force() ? sim_.state().body_force.data()[k] : 0.0;
-  return sim_.has_contact() ? b + sim_.contact_force().data()[k] : b;
-}
-
-void DynamicRelaxation::set_step_velocity() {
-  State& state = sim_.state();
-  const double dt = solve_dt_;
-  double* v = state.v.data();
-  const double* u = state.u.data();
-  const double* u0 = committed_u_.data();
-  for (std::size_t k = 0; k < 3 * sim_.num_owned(); ++k) v[k] = dt > 0 ? (u[k] - u0[k]) / dt : 0.0;
-  sim_.exchange_ghosts(state.v);
-}
-
-template <class Value>
-double DynamicRelaxation::weighted_norm(Value&& value) const {
-  const double* volume = sim_.discretization().volume.data();
-  const double sum = reproducible_sum(sim_.communicator(), 3 * sim_.num_owned(), [&](std::size_t k) {
-    const double f = value(k) * volume[k / 3];
-    return f * f;
-  });
-  return std::sqrt(sum);
-}
-
-double DynamicRelaxation::norm(const std::vector<double>& w) const {
-  return weighted_norm([&](std::size_t k) { return w[k]; });
-}
-
-DynamicRelaxation::Residual DynamicRelaxation::relative_residual(const std::vector<double>& F, double start_norm) const {
-  const auto& kind = sim_.loads().dof_kinds();
-  const double* f = sim_.state().force.data();
-  const double reaction = weighted_norm([&](std::size_t k) { return kind[k] == DofKind::free ? 0.0 : f[k]; });
-  const double applied = weighted_norm([&](std::size_t k) { return kind[k] == DofKind::free ? applied_force(k) : 0.0; });
-  // The loads of earlier steps count too: once they are removed (recovery under no load) the body's remaining
-  // forces cancel to a small residual that the round-off of its internal forces, of the scale of those loads,
-  // keeps from going lower.
-  const double reference = std::max({reaction, applied, start_norm, load_scale_});
-  const double residual = norm(F);
-  const double load = std::max(reaction, applied);
-  if (!std::isfinite(residual) || !std::isfinite(reaction) || !std::isfinite(applied))
-    return {std::numeric_limits<double>::quiet_NaN(), load};  // a blow-up anywhere, prescribed dofs included
-  return {reference > 0 ? residual / reference : 0.0, load};
-}
-
-std::int64_t DynamicRelaxation::relax() {
+void DynamicRelaxation::equilibrate() {
   State& state = sim_.state();
   const auto& kind = sim_.loads().dof_kinds();
   const Communicator& comm = sim_.communicator();
@@ -360,8 +85,8 @@ std::int64_t DynamicRelaxation::relax() {
       sim_.agree_on_failure(failure);
     }
     if (residual_ <= tolerance_) {
-      load_scale_ = std::max(load_scale_, r.load);
-      return iteration;
+      accept_load_scale(r.load);
+      return;
     }
     if (iteration >= max_iterations_) {
       const std::string apart = unsupported_fragment();
@@ -398,87 +123,6 @@ std::int64_t DynamicRelaxation::relax() {
   }
 }
 
-void DynamicRelaxation::advance() {
-  State& state = sim_.state();
-  PERIDOT_REQUIRE(committed_u_.size() == state.u.size(), "Simulation::initialize() must run before the first step");
-  const double dt = sim_.time_step();
-  const std::int64_t k = state.step + 1;
-  const double t = static_cast<double>(k) * dt;
-  const double factor = ramp_ ? static_cast<double>(k) / static_cast<double>(sim_.total_steps()) : 1.0;
-  state.time = t;
-  iterations_ = 0;
-  broken_ = 0;
-  if (stepped_loads_) {
-    creep(t, dt);  // under the loads of t_{k−1}, still in place
-    load_factor_ = factor;
-    if (creep_substeps_ > 1) {
-      loads_jumped_ = set_loads_and_compare(t, factor);
-    } else {
-      set_loads(t, factor);
-    }
-    solve_and_commit(0.0);
-  } else {
-    load_factor_ = factor;
-    set_loads(t, factor);
-    solve_and_commit(dt);
-  }
-  state.step = k;
-}
-
-void DynamicRelaxation::solve_and_commit(double dt) {
-  State& state = sim_.state();
-  const Discretization& disc = sim_.discretization();
-  const std::size_t owned = sim_.num_owned();
-  const auto& kind = sim_.loads().dof_kinds();
-  // The forces of the last accepted state, for the external work (trapezoidal over the change).
-  const VectorField force_before = state.force;
-  const VectorField& body_before = accepted_body_force_;  // set_loads may have changed state.body_force
-  const VectorField contact_before = sim_.has_contact() ? sim_.contact_force() : VectorField();
-  solve_dt_ = dt;
-  // Relax; break what is over-stretched at equilibrium; relax again (relax() restarts the damped motion
-  // from rest) until nothing breaks, or, breaking once per step, once.
-  for (;;) {
-    relax();
-    const std::uint64_t broken = sim_.break_bonds();
-    broken_ += broken;
-    if (broken == 0) break;
-    // A piece cut loose under load has no equilibrium: say so now rather than after max_iterations.
-    if (const std::string apart = unsupported_fragment(); !apart.empty())
-      throw NumericalError(fmt::format("dynamic relaxation, load step {} (time {:.6g} s): {} bonds broke and {}",
-                                       state.step + 1, state.time, broken, apart));
-    if (break_once_per_step_) {
-      relax();
-      break;
-    }
-  }
-  set_step_velocity();
-  sim_.commit(dt);
-
-  // External work of the change, trapezoidal: the supports' −f V on prescribed dofs, the body and contact
-  // forces on free ones.
-  double* work = sim_.external_work().data();
-  const double* volume = disc.volume.data();
-  const double* u = state.u.data();
-  const double* u0 = committed_u_.data();
-  const bool body = sim_.loads().has_body_force();
-  const bool contact = sim_.has_contact();
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < owned; ++i)
-    for (std::size_t q = 3 * i; q < 3 * i + 3; ++q) {
-      const double du = u[q] - u0[q];
-      if (kind[q] != DofKind::free) {
-        work[i] -= 0.5 * (force_before.data()[q] + state.force.data()[q]) * volume[i] * du;
-      } else {
-        double applied = 0;
-        if (body) applied += body_before.data()[q] + state.body_force.data()[q];
-        if (contact) applied += contact_before.data()[q] + sim_.contact_force().data()[q];
-        work[i] += 0.5 * applied * volume[i] * du;
-      }
-    }
-  committed_u_ = state.u;
-  accepted_body_force_ = state.body_force;
-}
-
 std::string DynamicRelaxation::describe() const {
   std::string out;
   out += fmt::format("solver           relaxation (adaptive dynamic relaxation, Kilic & Madenci 2010)\n");
@@ -490,28 +134,11 @@ std::string DynamicRelaxation::describe() const {
   return out;
 }
 
-void DynamicRelaxation::state_arrays(StateArrays& arrays) {
+void DynamicRelaxation::solver_state_arrays(StateArrays& arrays) {
   const std::size_t owned = sim_.num_owned();
   arrays.points("relaxation.velocity", velocity_, owned, 3);
   arrays.points("relaxation.force", force_, owned, 3);
   arrays.points("relaxation.previous_force", previous_force_, owned, 3);
-  arrays.points("relaxation.committed_u", committed_u_, owned);
-  arrays.points("relaxation.accepted_body_force", accepted_body_force_, owned);
-  arrays.points("relaxation.body_force", body_force_, std::min(owned, body_force_.size()));
-  arrays.global("relaxation.loads_jumped", &loads_jumped_);
-  arrays.global("relaxation.load_factor", &load_factor_);
-  arrays.global("relaxation.residual", &residual_);
-  arrays.global("relaxation.load_scale", &load_scale_);
-  arrays.global("relaxation.iterations", &iterations_);
-  arrays.global("relaxation.broken", &broken_);
-}
-
-std::vector<std::string> DynamicRelaxation::history_columns() const {
-  return {"load_factor", "residual", "iterations", "bonds_broken"};
-}
-
-std::vector<double> DynamicRelaxation::history_values() const {
-  return {load_factor_, residual_, static_cast<double>(iterations_), static_cast<double>(broken_)};
 }
 
 }  // namespace peridot

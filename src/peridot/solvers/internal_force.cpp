@@ -818,6 +818,23 @@ void stiffness_bound(const ModelContext& ctx, std::vector<double>& k) {
   });
 }
 
+void bond_stiffness(const ModelContext& ctx, std::vector<double>& k) {
+  const double* x = ctx.disc->x.data();
+  const BondList& bonds = *ctx.bonds;
+  k.assign(bonds.num_bonds(), 0.0);
+  for_each_block_geometry(ctx, [&](auto dim, const MaterialParams& p, BlockRange range) {
+    constexpr int Dim = decltype(dim)::value;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = range.begin; i < range.end; ++i)
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+        if (bonds.broken[b]) continue;
+        const std::uint32_t j = bonds.neighbors[b];
+        const double xi = bond_length<Dim>(x, i, j);
+        k[b] = neighbor_volume(ctx, i, j, xi) * p.stable_micromodulus * bond_scale(ctx, p, b) / xi;
+      }
+  });
+}
+
 double stable_time_step(const ModelContext& ctx) {
   std::vector<double> k;
   stiffness_bound(ctx, k);

@@ -61,6 +61,11 @@ void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u
 /// fictitious density of dynamic relaxation. Ghosts get 0.
 void stiffness_bound(const ModelContext& ctx, std::vector<double>& k);
 
+/// Per bond i → j, the axial spring V_j c G/ξ_ij of the pmb-like tangent (c the block's stable_micromodulus,
+/// G the surface correction's factor), 0 for a broken bond: f_i changes by this times the change of the
+/// bond's length along it, for pmb exactly at small deformation (the implicit solver's preconditioner).
+void bond_stiffness(const ModelContext& ctx, std::vector<double>& k);
+
 /// Silling–Askari stable time step min_i √(2ρ_i / Σ_j V_j c/ξ_ij) (s), before any safety factor.
 double stable_time_step(const ModelContext& ctx);
 

@@ -2,6 +2,7 @@
 
 #include "peridot/core/error.hpp"
 #include "peridot/solvers/dynamic_relaxation.hpp"
+#include "peridot/solvers/newton_krylov.hpp"
 #include "peridot/solvers/simulation.hpp"
 #include "peridot/solvers/velocity_verlet.hpp"
 
@@ -23,7 +24,8 @@ struct SolverList {
 // clang-format off
 using Solvers = SolverList<
     VelocityVerlet,
-    DynamicRelaxation>;
+    DynamicRelaxation,
+    NewtonKrylov>;
 // clang-format on
 
 }  // namespace

@@ -1,0 +1,538 @@
+#include "peridot/solvers/newton_krylov.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include <fmt/format.h>
+#include <petscsnes.h>
+
+#include "peridot/deck/map_reader.hpp"
+#include "peridot/parallel/communicator.hpp"
+#include "peridot/solvers/simulation.hpp"
+
+// KeySpecs are written with designated initializers that leave the other fields at their defaults on
+// purpose; GCC 12 warns about every omitted field regardless.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+namespace peridot {
+
+SolverInfo NewtonKrylov::info() {
+  SolverInfo info{
+      .name = name,
+      .summary = "static equilibrium in load steps by Newton–Krylov (PETSc)",
+      .description = "Newton's method with a line search for each equilibrium of the load steps (the same steps, "
+                     "ramp, bond breaking and residual as solver type relaxation), the linear systems by a Krylov "
+                     "method preconditioned with the assembled pmb-like tangent, through PETSc's SNES and KSP "
+                     "(docs/algorithms.md)",
+      .keys = load_step_keys("50", "Newton iterations allowed for one equilibrium; more ends the run with an error "
+                                   "naming the residual reached"),
+      .check = &NewtonKrylov::check};
+  info.keys.push_back(
+      {.key = "jacobian", .type = ValueType::choice, .default_yaml = "matrix_free",
+       .description = "matrix_free: Jacobian–vector products by a finite difference of the residual (every model, "
+                      "Newton's quadratic convergence); bond_tangent: the assembled pmb-like tangent itself (bond "
+                      "springs c/ξ along the deformed bonds: one matrix–vector product per Krylov iteration, linear "
+                      "convergence of Newton's outer loop except for pmb at small deformation)",
+       .choices = {"matrix_free", "bond_tangent"}});
+  info.keys.push_back({.key = "linear_solver", .type = ValueType::choice, .default_yaml = "gmres",
+                       .description = "Krylov method: gmres (any tangent) or cg (symmetric positive definite "
+                                      "tangents: elastic models without contact)",
+                       .choices = {"gmres", "cg"}});
+  info.keys.push_back({.key = "preconditioner", .type = ValueType::choice, .default_yaml = "gamg",
+                       .description = "of the assembled pmb-like tangent: gamg (PETSc's algebraic multigrid, the "
+                                      "rigid-body modes as its near-null space), ilu (block Jacobi with ILU(0) per "
+                                      "rank when distributed), jacobi or none",
+                       .choices = {"gamg", "ilu", "jacobi", "none"}});
+  info.keys.push_back({.key = "linear_tolerance", .default_yaml = "1e-6", .range = {0, 1, true, true},
+                       .description = "each linear solve stops when its residual has fallen by this factor"});
+  info.keys.push_back({.key = "max_linear_iterations", .type = ValueType::integer, .default_yaml = "1000",
+                       .range = at_least_one, .description = "Krylov iterations allowed for one linear solve"});
+  info.keys.push_back({.key = "line_search", .type = ValueType::choice, .default_yaml = "backtracking",
+                       .description = "backtracking: the Newton step is shortened until the residual norm "
+                                      "decreases enough (PETSc's bt); none: the full step always",
+                       .choices = {"backtracking", "none"}});
+  info.keys.push_back({.key = "print_iterations", .type = ValueType::boolean, .default_yaml = "false",
+                       .description = "print each Newton iterate's relative residual and Krylov iterations on "
+                                      "standard output"});
+  return info;
+}
+
+void NewtonKrylov::check(const Problem& problem, DeckContext& context) { check_static(problem, context, name); }
+
+// -- PETSc ----------------------------------------------------------------------------------------
+
+namespace {
+
+/// Turns a PETSc error code into an exception naming the call.
+void check_petsc(PetscErrorCode code, const char* call) {
+  if (code == 0) return;
+  const char* text = nullptr;
+  PetscErrorMessage(code, &text, nullptr);
+  throw NumericalError(fmt::format("PETSc: {} failed: {}", call, text != nullptr ? text : "unknown error"));
+}
+#define PERIDOT_PETSC(call) check_petsc((call), #call)
+
+/// PETSc starts once per process, on first use (a deck that only `check`s never starts it). When Peridot
+/// runs without a launcher MPI is not started, and PETSc starts it (a singleton) and finalizes it at exit.
+void start_petsc() {
+  PetscBool up = PETSC_FALSE;
+  PetscInitialized(&up);
+  if (up) return;
+  int mpi_up = 0;
+  MPI_Initialized(&mpi_up);
+  // Peridot handles SIGINT, SIGTERM and SIGUSR1 itself (a clean stop with the step's output).
+  PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr);
+  PERIDOT_PETSC(PetscInitializeNoArguments());
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);  // errors come back as codes, reported here
+  if (mpi_up == 0) std::atexit([] { PetscFinalize(); });
+}
+
+}  // namespace
+
+struct NewtonKrylov::Petsc {
+  MPI_Comm comm = MPI_COMM_NULL;
+  Vec x = nullptr, r = nullptr, base_x = nullptr, base_r = nullptr, work = nullptr;
+  Mat J = nullptr, P = nullptr;
+  SNES snes = nullptr;
+  std::vector<PetscInt> block;  ///< per point, owned then ghosts: its global block row
+  ~Petsc() {
+    SNESDestroy(&snes);
+    MatDestroy(&J);
+    MatDestroy(&P);
+    for (Vec* v : {&x, &r, &base_x, &base_r, &work}) VecDestroy(v);
+  }
+};
+
+namespace {
+
+/// Runs f, turning an exception into a PETSc error code (exceptions must not cross PETSc's C frames).
+template <class F>
+PetscErrorCode guarded(NewtonKrylov& self, F&& f) {
+  try {
+    f();
+    return 0;
+  } catch (...) {
+    self.error = std::current_exception();
+    return PETSC_ERR_USER;
+  }
+}
+
+PetscErrorCode form_function(SNES, Vec x, Vec r, void* context) {
+  auto& self = *static_cast<NewtonKrylov*>(context);
+  return guarded(self, [&] {
+    const PetscScalar* xa = nullptr;
+    PetscScalar* ra = nullptr;
+    PERIDOT_PETSC(VecGetArrayRead(x, &xa));
+    PERIDOT_PETSC(VecGetArray(r, &ra));
+    self.evaluate_residual(xa, ra, true);
+    PERIDOT_PETSC(VecRestoreArray(r, &ra));
+    PERIDOT_PETSC(VecRestoreArrayRead(x, &xa));
+  });
+}
+
+PetscErrorCode form_jacobian(SNES snes, Vec x, Mat, Mat, void* context) {
+  auto& self = *static_cast<NewtonKrylov*>(context);
+  return guarded(self, [&] {
+    const PetscScalar* xa = nullptr;
+    PERIDOT_PETSC(VecGetArrayRead(x, &xa));
+    self.assemble(xa);
+    PERIDOT_PETSC(VecRestoreArrayRead(x, &xa));
+    (void)snes;
+  });
+}
+
+PetscErrorCode convergence_test(SNES, PetscInt iteration, PetscReal, PetscReal, PetscReal, SNESConvergedReason* reason,
+                                void* context) {
+  auto& self = *static_cast<NewtonKrylov*>(context);
+  return guarded(self, [&] {
+    int r = 0;
+    self.converged_or_stop(iteration, r);
+    *reason = static_cast<SNESConvergedReason>(r);
+  });
+}
+
+}  // namespace
+
+// The matrix-free product J v, a shell matrix's multiplication.
+static PetscErrorCode jacobian_product(Mat J, Vec v, Vec y);
+
+NewtonKrylov::NewtonKrylov(Simulation& sim)
+    : QuasiStatic(sim),
+      jacobian_(sim.problem().solver.parameters.text("jacobian") == "bond_tangent" ? Jacobian::bond_tangent
+                                                                                   : Jacobian::matrix_free),
+      linear_solver_(sim.problem().solver.parameters.text("linear_solver")),
+      preconditioner_(sim.problem().solver.parameters.text("preconditioner")),
+      linear_tolerance_(sim.problem().solver.parameters.number("linear_tolerance")),
+      max_linear_iterations_(sim.problem().solver.parameters.integer("max_linear_iterations")),
+      line_search_(sim.problem().solver.parameters.text("line_search") == "backtracking"),
+      print_iterations_(sim.problem().solver.parameters.boolean("print_iterations")) {}
+
+NewtonKrylov::~NewtonKrylov() = default;
+
+bool NewtonKrylov::active(std::size_t k) const {
+  const int dimension = sim_.problem().dimension;
+  const std::size_t component = k % 3;
+  if (static_cast<int>(component) >= dimension) return false;
+  return sim_.loads().dof_kinds()[k] == DofKind::free && diagonal_[k / 3] > 0;
+}
+
+void NewtonKrylov::set_displacement(const double* x) {
+  double* u = sim_.state().u.data();
+  const std::size_t dofs = 3 * sim_.num_owned();
+  for (std::size_t k = 0; k < dofs; ++k) u[k] = active(k) ? x[k] : target_.data()[k];
+  sim_.exchange_ghosts(sim_.state().u);
+}
+
+void NewtonKrylov::evaluate_residual(const double* x, double* r, bool record) {
+  set_displacement(x);
+  evaluate_residual_force(force_);
+  const double* volume = sim_.discretization().volume.data();
+  const double* target = target_.data();
+  const std::size_t dofs = 3 * sim_.num_owned();
+  for (std::size_t k = 0; k < dofs; ++k)
+    r[k] = active(k) ? -force_[k] * volume[k / 3] : diagonal_[k / 3] * (x[k] - target[k]);
+  if (!record) return;
+  if (!started_) start_norm_ = norm(force_), started_ = true;
+  const Residual relative = relative_residual(force_, start_norm_);
+  recorded_ = relative.relative;
+  recorded_load_ = relative.load;
+}
+
+void NewtonKrylov::assemble(const double* x) {
+  set_displacement(x);
+  Petsc& p = *petsc_;
+  const Discretization& disc = sim_.discretization();
+  const BondList& bonds = sim_.bonds();
+  const std::size_t owned = sim_.num_owned();
+  // Which dofs of every point, ghosts included, are unknowns (their columns stay; the others' are zero).
+  VectorField unknown(disc.num_points());
+  for (std::size_t i = 0; i < owned; ++i)
+    unknown.set(i, Vec3{active(3 * i) ? 1.0 : 0.0, active(3 * i + 1) ? 1.0 : 0.0, active(3 * i + 2) ? 1.0 : 0.0});
+  sim_.exchange_ghosts(unknown);
+  const double* X = disc.x.data();
+  const double* u = sim_.state().u.data();
+  const double* known = unknown.data();
+  PERIDOT_PETSC(MatZeroEntries(p.P));
+  double block[9];
+  for (std::size_t i = 0; i < owned; ++i) {
+    double diagonal[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    const PetscInt row = p.block[i];
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      if (bond_k_[b] == 0) continue;
+      const std::uint32_t j = bonds.neighbors[b];
+      double e[3], length = 0;
+      for (int d = 0; d < 3; ++d) {
+        e[d] = X[3 * j + d] + u[3 * j + d] - X[3 * i + d] - u[3 * i + d];
+        length += e[d] * e[d];
+      }
+      length = std::sqrt(length);
+      if (!(length > 0)) continue;
+      const double s = bond_k_[b] * disc.volume[i];
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) {
+          const double kac = s * e[a] * e[c] / (length * length);
+          diagonal[3 * a + c] += kac;
+          block[3 * a + c] = known[3 * i + a] * known[3 * j + c] * -kac;
+        }
+      const PetscInt column = p.block[j];
+      PERIDOT_PETSC(MatSetValuesBlocked(p.P, 1, &row, 1, &column, block, ADD_VALUES));
+    }
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) {
+        if (known[3 * i + a] == 0 || known[3 * i + c] == 0) diagonal[3 * a + c] = 0;
+        if (a == c && known[3 * i + a] == 0) diagonal[3 * a + c] = diagonal_[i];
+      }
+    PERIDOT_PETSC(MatSetValuesBlocked(p.P, 1, &row, 1, &row, diagonal, ADD_VALUES));
+  }
+  PERIDOT_PETSC(MatAssemblyBegin(p.P, MAT_FINAL_ASSEMBLY));
+  PERIDOT_PETSC(MatAssemblyEnd(p.P, MAT_FINAL_ASSEMBLY));
+  if (jacobian_ == Jacobian::matrix_free) {  // the base point of the finite differences: x and R(x)
+    Vec r = nullptr;
+    PERIDOT_PETSC(SNESGetFunction(p.snes, &r, nullptr, nullptr));
+    std::vector<double> copy(3 * owned);
+    PetscScalar* base = nullptr;
+    PERIDOT_PETSC(VecGetArray(p.base_x, &base));
+    std::copy(x, x + 3 * owned, base);
+    PERIDOT_PETSC(VecRestoreArray(p.base_x, &base));
+    PERIDOT_PETSC(VecCopy(r, p.base_r));
+    PERIDOT_PETSC(MatAssemblyBegin(p.J, MAT_FINAL_ASSEMBLY));
+    PERIDOT_PETSC(MatAssemblyEnd(p.J, MAT_FINAL_ASSEMBLY));
+  }
+}
+
+static PetscErrorCode jacobian_product(Mat J, Vec v, Vec y) {
+  NewtonKrylov* self = nullptr;
+  PetscErrorCode code = MatShellGetContext(J, &self);
+  if (code != 0) return code;
+  return guarded(*self, [&] { self->multiply(v, y); });
+}
+
+void NewtonKrylov::multiply(Vec v, Vec y) {
+  Petsc& p = *petsc_;
+  PetscReal v_norm = 0, x_norm = 0;
+  PERIDOT_PETSC(VecNorm(v, NORM_INFINITY, &v_norm));
+  if (v_norm == 0) {
+    PERIDOT_PETSC(VecSet(y, 0.0));
+    return;
+  }
+  PERIDOT_PETSC(VecNorm(p.base_x, NORM_INFINITY, &x_norm));
+  // A step of √ε relative to the displacement or, near u = 0, to the smallest bond: the finite difference
+  // then resolves the bonds' stretch to about √ε.
+  const double h = std::sqrt(DBL_EPSILON) * std::max(length_scale_, x_norm) / v_norm;
+  PERIDOT_PETSC(VecWAXPY(p.work, h, v, p.base_x));
+  const PetscScalar* w = nullptr;
+  PetscScalar* out = nullptr;
+  PERIDOT_PETSC(VecGetArrayRead(p.work, &w));
+  PERIDOT_PETSC(VecGetArray(y, &out));
+  evaluate_residual(w, out, false);
+  PERIDOT_PETSC(VecRestoreArray(y, &out));
+  PERIDOT_PETSC(VecRestoreArrayRead(p.work, &w));
+  PERIDOT_PETSC(VecAXPY(y, -1.0, p.base_r));
+  PERIDOT_PETSC(VecScale(y, 1.0 / h));
+}
+
+bool NewtonKrylov::converged_or_stop(std::int64_t iteration, int& reason) {
+  newton_residuals_.push_back(recorded_);
+  if (print_iterations_ && sim_.communicator().rank() == 0) {
+    PetscInt linear = 0;
+    SNESGetLinearSolveIterations(petsc_->snes, &linear);
+    fmt::print("load step {}, Newton iteration {}: relative residual {:.3e} ({} Krylov iterations so far)\n",
+               sim_.state().step + 1, iteration, recorded_, linear);
+    std::fflush(stdout);
+  }
+  reason = SNES_CONVERGED_ITERATING;
+  if (!std::isfinite(recorded_)) {
+    reason = SNES_DIVERGED_FNORM_NAN;
+  } else if (recorded_ <= tolerance_) {
+    reason = SNES_CONVERGED_FNORM_ABS;
+    accept_load_scale(recorded_load_);
+  } else if (iteration >= max_iterations_) {
+    reason = SNES_DIVERGED_MAX_IT;
+  }
+  return reason != SNES_CONVERGED_ITERATING;
+}
+
+void NewtonKrylov::setup() {
+  start_petsc();
+  petsc_ = std::make_unique<Petsc>();
+  Petsc& p = *petsc_;
+  const Communicator& comm = sim_.communicator();
+  const Discretization& disc = sim_.discretization();
+  const BondList& bonds = sim_.bonds();
+  const std::size_t owned = sim_.num_owned();
+  p.comm = comm.serial() ? PETSC_COMM_SELF : comm.mpi();
+  const auto n = static_cast<PetscInt>(3 * owned);
+  PERIDOT_PETSC(VecCreate(p.comm, &p.x));
+  PERIDOT_PETSC(VecSetSizes(p.x, n, PETSC_DETERMINE));
+  PERIDOT_PETSC(VecSetBlockSize(p.x, 3));
+  PERIDOT_PETSC(VecSetType(p.x, VECSTANDARD));
+  for (Vec* v : {&p.r, &p.base_x, &p.base_r, &p.work}) PERIDOT_PETSC(VecDuplicate(p.x, v));
+  PetscInt first = 0, global = 0;
+  PERIDOT_PETSC(VecGetOwnershipRange(p.x, &first, nullptr));
+  PERIDOT_PETSC(VecGetSize(p.x, &global));
+
+  // Every point's global block row: owned points in their local order from this rank's first row, ghosts
+  // from their owners (a double holds the index exactly).
+  VectorField index(disc.num_points());
+  for (std::size_t i = 0; i < owned; ++i) {
+    const double row = static_cast<double>(first / 3) + static_cast<double>(i);
+    index.set(i, Vec3{row, row, row});
+  }
+  sim_.exchange_ghosts(index);
+  p.block.resize(disc.num_points());
+  for (std::size_t i = 0; i < disc.num_points(); ++i) p.block[i] = static_cast<PetscInt>(index.get(i).x);
+
+  // Preallocation per block row: the point itself and its family, split into owned and ghost columns.
+  std::vector<PetscInt> on_rank(owned, 1), off_rank(owned, 0);
+  double shortest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < owned; ++i)
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      const std::uint32_t j = bonds.neighbors[b];
+      ++(j < owned ? on_rank[i] : off_rank[i]);
+      const Vec3 d = disc.x.get(j) - disc.x.get(i);
+      shortest = std::min(shortest, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z));
+    }
+  length_scale_ = comm.min(shortest);
+  if (!std::isfinite(length_scale_)) length_scale_ = 1.0;
+  PERIDOT_PETSC(MatCreate(p.comm, &p.P));
+  PERIDOT_PETSC(MatSetSizes(p.P, n, n, global, global));
+  PERIDOT_PETSC(MatSetType(p.P, MATAIJ));
+  PERIDOT_PETSC(MatSetBlockSize(p.P, 3));
+  PERIDOT_PETSC(MatXAIJSetPreallocation(p.P, 3, on_rank.data(), off_rank.data(), nullptr, nullptr));
+  PERIDOT_PETSC(MatSetOption(p.P, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  set_rigid_body_modes();
+  if (jacobian_ == Jacobian::matrix_free) {
+    PERIDOT_PETSC(MatCreateShell(p.comm, n, n, global, global, this, &p.J));
+    PERIDOT_PETSC(MatShellSetOperation(p.J, MATOP_MULT, reinterpret_cast<void (*)(void)>(&jacobian_product)));
+  } else {
+    PERIDOT_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(p.P)));
+    p.J = p.P;
+  }
+
+  PERIDOT_PETSC(SNESCreate(p.comm, &p.snes));
+  PERIDOT_PETSC(SNESSetType(p.snes, SNESNEWTONLS));
+  PERIDOT_PETSC(SNESSetFunction(p.snes, p.r, form_function, this));
+  PERIDOT_PETSC(SNESSetJacobian(p.snes, p.J, p.P, form_jacobian, this));
+  SNESLineSearch search = nullptr;
+  PERIDOT_PETSC(SNESGetLineSearch(p.snes, &search));
+  PERIDOT_PETSC(SNESLineSearchSetType(search, line_search_ ? SNESLINESEARCHBT : SNESLINESEARCHBASIC));
+  PERIDOT_PETSC(SNESSetTolerances(p.snes, 0.0, 0.0, 0.0, static_cast<PetscInt>(max_iterations_), 1000000000));
+  PERIDOT_PETSC(SNESSetConvergenceTest(p.snes, convergence_test, this, nullptr));
+  PERIDOT_PETSC(SNESSetMaxLinearSolveFailures(p.snes, 1000000000));
+  KSP ksp = nullptr;
+  PERIDOT_PETSC(SNESGetKSP(p.snes, &ksp));
+  PERIDOT_PETSC(KSPSetType(ksp, linear_solver_ == "cg" ? KSPCG : KSPGMRES));
+  PERIDOT_PETSC(KSPSetTolerances(ksp, linear_tolerance_, PETSC_DEFAULT, PETSC_DEFAULT,
+                                 static_cast<PetscInt>(max_linear_iterations_)));
+  PC pc = nullptr;
+  PERIDOT_PETSC(KSPGetPC(ksp, &pc));
+  if (preconditioner_ == "gamg") {
+    PERIDOT_PETSC(PCSetType(pc, PCGAMG));
+    // SOR smoothing on the levels (GAMG's default, Jacobi under Chebyshev, took 10-20 times the Krylov
+    // iterations on the notched LPS plate), unless PETSC_OPTIONS chooses another.
+    PetscBool chosen = PETSC_FALSE;
+    PERIDOT_PETSC(PetscOptionsHasName(nullptr, nullptr, "-mg_levels_pc_type", &chosen));
+    if (!chosen) PERIDOT_PETSC(PetscOptionsSetValue(nullptr, "-mg_levels_pc_type", "sor"));
+  } else if (preconditioner_ == "ilu") {
+    PERIDOT_PETSC(PCSetType(pc, comm.serial() ? PCILU : PCBJACOBI));
+  } else if (preconditioner_ == "jacobi") {
+    PERIDOT_PETSC(PCSetType(pc, PCJACOBI));
+  } else {
+    PERIDOT_PETSC(PCSetType(pc, PCNONE));
+  }
+  // PETSc's own options (the PETSC_OPTIONS environment variable, e.g. -ksp_monitor or -pc_gamg_threshold)
+  // refine or override the deck's choices, for those who tune solvers.
+  PERIDOT_PETSC(SNESSetFromOptions(p.snes));
+}
+
+void NewtonKrylov::set_rigid_body_modes() {
+  // The rigid motions of the deck's dimension (3D: three translations and three rotations; 2D: two and the
+  // rotation in the plane; 1D: the translation), orthonormalised: the near-null space from which GAMG builds
+  // its coarse spaces. Modes that move the inactive out-of-plane dofs would not be near-null there.
+  Petsc& p = *petsc_;
+  const int dimension = sim_.problem().dimension;
+  const std::size_t owned = sim_.num_owned();
+  const double* x = sim_.discretization().x.data();
+  const int count = dimension == 3 ? 6 : dimension == 2 ? 3 : 1;
+  std::vector<Vec> modes(static_cast<std::size_t>(count), nullptr);
+  for (int m = 0; m < count; ++m) {
+    PERIDOT_PETSC(VecDuplicate(p.x, &modes[static_cast<std::size_t>(m)]));
+    PetscScalar* v = nullptr;
+    PERIDOT_PETSC(VecGetArray(modes[static_cast<std::size_t>(m)], &v));
+    for (std::size_t i = 0; i < owned; ++i) {
+      const double* c = x + 3 * i;
+      double* w = v + 3 * i;
+      w[0] = w[1] = w[2] = 0;
+      if (m < dimension) {
+        w[m] = 1;  // translations
+      } else if (m == dimension) {  // rotation about z (the plane's normal in 2D)
+        w[0] = -c[1], w[1] = c[0];
+      } else if (m == 4) {  // about x
+        w[1] = -c[2], w[2] = c[1];
+      } else {  // about y
+        w[0] = c[2], w[2] = -c[0];
+      }
+    }
+    PERIDOT_PETSC(VecRestoreArray(modes[static_cast<std::size_t>(m)], &v));
+    for (int k = 0; k < m; ++k) {  // Gram–Schmidt against the modes before it
+      PetscScalar dot = 0;
+      PERIDOT_PETSC(VecDot(modes[static_cast<std::size_t>(m)], modes[static_cast<std::size_t>(k)], &dot));
+      PERIDOT_PETSC(VecAXPY(modes[static_cast<std::size_t>(m)], -dot, modes[static_cast<std::size_t>(k)]));
+    }
+    PERIDOT_PETSC(VecNormalize(modes[static_cast<std::size_t>(m)], nullptr));
+  }
+  MatNullSpace space = nullptr;
+  PERIDOT_PETSC(MatNullSpaceCreate(p.comm, PETSC_FALSE, count, modes.data(), &space));
+  PERIDOT_PETSC(MatSetNearNullSpace(p.P, space));
+  PERIDOT_PETSC(MatNullSpaceDestroy(&space));
+  for (Vec& v : modes) PERIDOT_PETSC(VecDestroy(&v));
+}
+
+void NewtonKrylov::begin_load_step() { linear_iterations_ = 0; }
+
+void NewtonKrylov::equilibrate() {
+  if (!petsc_) setup();
+  Petsc& p = *petsc_;
+  State& state = sim_.state();
+  const Discretization& disc = sim_.discretization();
+  const BondList& bonds = sim_.bonds();
+  const std::size_t owned = sim_.num_owned();
+  force_.assign(3 * owned, 0.0);
+  target_ = state.u;
+  // The bonds' springs as they are now (bonds break between equilibria) and each point's diagonal d.
+  bond_stiffness(sim_.model(), bond_k_);
+  diagonal_.assign(owned, 0.0);
+  for (std::size_t i = 0; i < owned; ++i) {
+    double sum = 0;
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) sum += bond_k_[b];
+    diagonal_[i] = sum * disc.volume[i];
+  }
+  started_ = false;
+  newton_residuals_.clear();
+  error = nullptr;
+  PetscScalar* xa = nullptr;
+  PERIDOT_PETSC(VecGetArray(p.x, &xa));
+  std::copy(state.u.data(), state.u.data() + 3 * owned, xa);
+  PERIDOT_PETSC(VecRestoreArray(p.x, &xa));
+
+  const PetscErrorCode code = SNESSolve(p.snes, nullptr, p.x);
+  if (error) {
+    std::exception_ptr thrown = error;
+    error = nullptr;
+    std::rethrow_exception(thrown);
+  }
+  check_petsc(code, "SNESSolve");
+  PetscInt newton = 0, linear = 0;
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+  PERIDOT_PETSC(SNESGetIterationNumber(p.snes, &newton));
+  PERIDOT_PETSC(SNESGetLinearSolveIterations(p.snes, &linear));
+  PERIDOT_PETSC(SNESGetConvergedReason(p.snes, &reason));
+  iterations_ += newton;
+  linear_iterations_ += linear;
+  // The state is that of the solution (the last evaluation may have been a finite difference's).
+  const PetscScalar* solution = nullptr;
+  PERIDOT_PETSC(VecGetArrayRead(p.x, &solution));
+  std::vector<double> r(3 * owned);
+  evaluate_residual(solution, r.data(), true);
+  PERIDOT_PETSC(VecRestoreArrayRead(p.x, &solution));
+  residual_ = recorded_;
+  if (reason > 0) return;
+
+  std::string why;
+  switch (reason) {
+    case SNES_DIVERGED_MAX_IT: why = fmt::format("no convergence in {} Newton iterations", newton); break;
+    case SNES_DIVERGED_LINE_SEARCH: why = fmt::format("the line search stalled at Newton iteration {}", newton); break;
+    case SNES_DIVERGED_FNORM_NAN: why = fmt::format("the residual became non-finite at Newton iteration {}", newton); break;
+    case SNES_DIVERGED_LINEAR_SOLVE: why = fmt::format("the linear solve failed at Newton iteration {}", newton); break;
+    default: why = fmt::format("SNES stopped ({}) at Newton iteration {}", SNESConvergedReasons[reason], newton);
+  }
+  std::string cause = unsupported_fragment();
+  if (cause.empty())
+    cause = reason == SNES_DIVERGED_MAX_IT
+                ? "use more load_steps, raise solver.max_iterations or loosen solver.tolerance"
+                : "the tangent may be singular (a free body or a mechanism: check that the supports hold every "
+                  "rigid motion) or the load step too large (use more load_steps)";
+  throw NumericalError(fmt::format("Newton's method failed in load step {} (time {:.6g} s, load factor {:.6g}): {}, "
+                                   "relative force residual {:.3e}, tolerance {:.3e}; {}",
+                                   state.step + 1, state.time, load_factor_, why, residual_, tolerance_, cause));
+}
+
+std::string NewtonKrylov::describe() const {
+  std::string out;
+  out += "solver           implicit (Newton–Krylov through PETSc SNES/KSP)\n";
+  out += fmt::format("load steps       {} to t = {:.6g} s ({}), Δt = {:.6g} s\n", sim_.total_steps(),
+                     sim_.time_step() * static_cast<double>(sim_.total_steps()),
+                     ramp_ ? "loads ramped by k/N" : "loads as given at each t_k", sim_.time_step());
+  out += fmt::format("equilibrium      relative force residual ≤ {:.3g}, at most {} Newton iterations, {} line search\n",
+                     tolerance_, max_iterations_, line_search_ ? "backtracking" : "no");
+  out += fmt::format("linear solves    {} preconditioned by {} of the pmb-like tangent, Jacobian {}, relative "
+                     "tolerance {:.3g}, at most {} iterations\n",
+                     linear_solver_, preconditioner_, jacobian_ == Jacobian::matrix_free ? "matrix-free" : "bond tangent",
+                     linear_tolerance_, max_linear_iterations_);
+  return out;
+}
+
+}  // namespace peridot

@@ -1,0 +1,97 @@
+#pragma once
+// The implicit static solver (solver.type: implicit): each equilibrium of the quasi-static load steps
+// (quasi_static.hpp: loads, residual, bond breaking, commits) by Newton's method with a line search, through
+// PETSc (SNES for the nonlinear solve, KSP for the linear one; docs/algorithms.md "Newton–Krylov").
+//   Unknowns: the three displacement components of every owned point, laid out on Peridot's own partition
+//   (rank r owns the rows of its points, in its local order). Residual R = −(f + b + contact) V on the free
+//   dofs (N); on a prescribed dof, and on the out-of-plane dofs of a 2D or 1D deck, R = d (x − ū) with d the
+//   point's diagonal stiffness, so that the Newton update keeps them where the loads put them.
+//   Jacobian: matrix_free (J v = [R(u + h v) − R(u)]/h, h = √ε · max(Δx_min, ‖u‖∞)/‖v‖∞: every model, its
+//   inelastic return map included, since R is the trial state of the step), or bond_tangent, the assembled
+//   pmb-like tangent K (below) itself (a modified Newton method; exact for pmb at small deformation).
+//   Preconditioner: K, the bond springs V_i V_j c G/ξ (internal_force.hpp bond_stiffness) along each intact
+//   bond's deformed direction, 3×3 blocks in a PETSc AIJ matrix of block size 3 with the rigid-body modes
+//   as GAMG's near-null space; algebraic multigrid (gamg), ILU (block Jacobi with ILU per rank when
+//   distributed), Jacobi or none.
+// Convergence is quasi_static.hpp's relative residual (reproducible sums), tested by SNES at each Newton
+// iterate. Bitwise: the residual evaluations are the same bits for any thread count, and PETSc runs one
+// thread per rank, so a deck gives the same bits on any number of threads; across rank counts the Krylov
+// reductions and the preconditioner (ILU blocks, GAMG's aggregates) follow the partition, so the answers
+// agree to the solver's tolerances, not bitwise.
+#include <cstdint>
+#include <exception>
+#include <memory>
+#include <vector>
+
+#include "peridot/solvers/quasi_static.hpp"
+
+struct _p_Vec;  // PETSc's Vec
+
+namespace peridot {
+
+class NewtonKrylov final : public QuasiStatic {
+ public:
+  static constexpr std::string_view name = "implicit";
+  /// Its deck keys (solver.type: implicit) and checks (deck/solver_schema.hpp).
+  static SolverInfo info();
+  static void check(const Problem& problem, DeckContext& context);
+
+  explicit NewtonKrylov(Simulation& sim);
+  ~NewtonKrylov() override;
+  std::string describe() const override;
+
+  /// The relative residual at each Newton iterate of the last equilibrium (the first: its start).
+  const std::vector<double>& newton_residuals() const { return newton_residuals_; }
+  /// Krylov iterations of the last load step in total.
+  std::int64_t linear_iterations() const { return linear_iterations_; }
+
+  struct Petsc;  // the PETSc objects (newton_krylov.cpp)
+
+ private:
+  void equilibrate() override;
+  void begin_load_step() override;
+  /// Starts PETSc (once per process) and builds the vectors, the matrices and the SNES (first equilibrium).
+  void setup();
+  /// The rigid-body modes of the deck's dimension as the preconditioner matrix's near-null space (GAMG).
+  void set_rigid_body_modes();
+  std::vector<std::string> solver_history_columns() const override { return {"linear_iterations"}; }
+  std::vector<double> solver_history_values() const override {
+    return {static_cast<double>(linear_iterations_)};
+  }
+
+ public:  // called from PETSc's callbacks (newton_krylov.cpp)
+  /// R(x) into r (PETSc arrays of the owned dofs); with record, its relative residual becomes the iterate's.
+  void evaluate_residual(const double* x, double* r, bool record);
+  /// Assembles K at x into the preconditioner matrix (and the base point of the matrix-free Jacobian).
+  void assemble(const double* x);
+  /// The iterate's relative residual and whether it is finite (the last recorded residual()).
+  double recorded_residual() const { return recorded_; }
+  /// SNES's convergence test at each Newton iterate: reason (a SNESConvergedReason) set; true when it stops.
+  bool converged_or_stop(std::int64_t iteration, int& reason);
+  /// y = J v by the finite difference of the residual from the base point of the last assemble.
+  void multiply(_p_Vec* v, _p_Vec* y);
+  std::exception_ptr error;  ///< an exception thrown inside a callback, rethrown after the solve
+
+ private:
+  /// Copies x into u (free, active dofs) and refreshes the ghosts.
+  void set_displacement(const double* x);
+  bool active(std::size_t k) const;
+
+  enum class Jacobian { matrix_free, bond_tangent };
+  Jacobian jacobian_;
+  std::string linear_solver_, preconditioner_;
+  double linear_tolerance_;
+  std::int64_t max_linear_iterations_;
+  bool line_search_, print_iterations_;
+  std::unique_ptr<Petsc> petsc_;
+  std::vector<double> force_;       ///< per owned dof: the residual force density of the last evaluation
+  std::vector<double> diagonal_;    ///< per owned point: d, the diagonal stiffness of K (N/m)
+  std::vector<double> bond_k_;      ///< per bond: bond_stiffness
+  VectorField target_;              ///< u where the loads put it (prescribed and inactive dofs)
+  std::vector<double> newton_residuals_;
+  double start_norm_ = 0, recorded_ = 0, recorded_load_ = 0, length_scale_ = 0;
+  bool started_ = false;
+  std::int64_t linear_iterations_ = 0;
+};
+
+}  // namespace peridot

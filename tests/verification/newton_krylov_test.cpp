@@ -1,0 +1,197 @@
+// The implicit solver (solvers/newton_krylov.hpp): the static problems of dynamic relaxation give the same
+// equilibria (an LPS bar against the uniaxial solution, an elastic-plastic notched plate whose crack grows
+// between equilibria); Newton converges quadratically; both Jacobians reach the same answer; the same bits on
+// one and two threads; failures name the load step, the iteration, the residual and the likely cause; the deck
+// refuses what a static solution cannot have.
+#include <gtest/gtest.h>
+
+#include <omp.h>
+
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <string>
+
+#include "peridot/deck/deck.hpp"
+#include "peridot/solvers/dynamic_relaxation.hpp"
+#include "peridot/solvers/newton_krylov.hpp"
+#include "peridot/solvers/simulation.hpp"
+#include "support/static_problems.hpp"
+
+namespace peridot {
+namespace {
+
+using namespace testing;
+
+const NewtonKrylov& newton(const Simulation& sim) { return dynamic_cast<const NewtonKrylov&>(sim.integrator()); }
+
+TEST(NewtonKrylov, BarReachesTheEquilibriumOfDynamicRelaxation) {
+  const int nx = 40, n = 11;
+  const auto implicit = solve(bar_problem(nx, n, 1, "lps", 1, "implicit"));
+  const auto relaxed = solve(bar_problem(nx, n, 1));
+  EXPECT_LE(newton(*implicit).residual(), 1e-9);
+  const auto [axial, lateral] = bar_strains(*implicit, nx, n);
+  EXPECT_NEAR(axial, strain, 0.015 * strain);
+  EXPECT_NEAR(-lateral / axial, nu, 0.01 * nu);
+  // Both solvers stop at a relative force residual of 1e-9; the displacements then agree to about the
+  // residual times the condition of the bar's stiffness.
+  const double difference = relative_difference(*implicit, *relaxed);
+  EXPECT_LT(difference, 1e-6);
+  std::cout << "implicit: " << newton(*implicit).iterations() << " Newton iterations, "
+            << newton(*implicit).linear_iterations() << " Krylov iterations; relaxation: "
+            << dynamic_cast<const DynamicRelaxation&>(relaxed->integrator()).iterations()
+            << " iterations; relative difference " << difference << "\n";
+}
+
+TEST(NewtonKrylov, ConvergesQuadratically) {
+  // Stretched by 2 % in one load step, the bar's bonds rotate and stretch enough that the response is
+  // clearly nonlinear; once the iterate is close, each residual is at most a constant times the square of the
+  // one before (the constant measured here is about 3; the finite-difference Jacobian and the linear
+  // tolerance 1e-6 bound the gain per iteration at about 1e-6 too).
+  Problem p = bar_problem(24, 7, 1, "lps", 1, "implicit");
+  for (BoundaryConditionSpec& bc : p.boundary_conditions)
+    bc.value.text.replace(0, bc.value.text.find(' '), bc.component == 0 ? "0.02" : "-0.006");
+  p.solver.parameters.set_number("tolerance", 1e-12);
+  p.solver.parameters.set_number("linear_tolerance", 1e-10);
+  const auto sim = solve(p);
+  const std::vector<double>& r = newton(*sim).newton_residuals();
+  ASSERT_GE(r.size(), 3u);
+  std::cout << "relative residuals:";
+  for (double x : r) std::cout << " " << x;
+  std::cout << "\n";
+  EXPECT_LE(r.back(), 1e-12);
+  EXPECT_LE(r.size(), 7u);
+  int quadratic = 0;
+  for (std::size_t k = 1; k + 1 < r.size(); ++k)
+    if (r[k] < 1e-2 && r[k + 1] > 1e-13) {
+      EXPECT_LT(r[k + 1], 100 * r[k] * r[k]) << "iteration " << k + 1;
+      ++quadratic;
+    }
+  EXPECT_GE(quadratic, 1);
+}
+
+TEST(NewtonKrylov, BondTangentJacobianReachesTheSameEquilibrium) {
+  Problem p = bar_problem(16, 7, 1, "lps", 1, "implicit");
+  const auto matrix_free = solve(p);
+  p.solver.parameters.set_text("jacobian", "bond_tangent");
+  p.solver.parameters.set_integer("max_iterations", 200);
+  const auto bond_tangent = solve(p);
+  EXPECT_LT(relative_difference(*matrix_free, *bond_tangent), 1e-6);
+  // The modified Newton method converges linearly: more outer iterations, each cheaper.
+  EXPECT_GT(newton(*bond_tangent).iterations(), newton(*matrix_free).iterations());
+}
+
+/// The elastic-plastic notched plate of the relaxation tests (lps_plastic, bonds breaking between equilibria)
+/// with this solver type.
+Problem notched_plate(const std::string& type) {
+  const std::string deck = R"(discretization: {dimension: 2, plane: stress, thickness: 1 mm, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  alloy: {model: lps_plastic, yield_stress: 60 MPa, hardening_modulus: 1 GPa, density: 2440, youngs_modulus: 72 GPa,
+          poisson_ratio: 0.22, damage: {critical_stretch: 0.0015}}
+bodies:
+  plate: {material: alloy, shape: {box: {min: [0, 0], max: [0.015, 0.015]}}}
+precracks:
+  - segment: {from: [0, 0.0075], to: [0.005, 0.0075]}
+node_sets:
+  top: {shape: {box: {min: [-1, 0.0125], max: [1, 1]}}}
+  bottom: {shape: {box: {min: [-1, -1], max: [1, 0.0025]}}}
+no_fail: [top, bottom]
+boundary_conditions:
+  - {node_set: top, displacement: {x: "0", y: "6e-6"}}
+  - {node_set: bottom, displacement: {x: "0", y: "-6e-6"}}
+solver: {type: TYPE, load_steps: 3, tolerance: 1e-9}
+output: {progress: false}
+)";
+  std::string text = deck;
+  text.replace(text.find("TYPE"), 4, type);
+  return parse_deck(text, "deck.yaml", ".");
+}
+
+TEST(NewtonKrylov, PlasticNotchedPlateBreaksTheBondsRelaxationBreaks) {
+  // Plastic history committed once per load step, the trial return map inside every residual (and every
+  // finite difference of the Jacobian), bonds breaking between equilibria until none does.
+  const auto implicit = solve(notched_plate("implicit"));
+  const auto relaxed = solve(notched_plate("relaxation"));
+  const std::size_t broken = broken_bonds(*implicit);
+  EXPECT_GT(broken, 100u);
+  EXPECT_EQ(broken, broken_bonds(*relaxed));
+  EXPECT_LT(relative_difference(*implicit, *relaxed), 1e-5);
+  double plastic = 0, difference = 0;
+  for (std::size_t i = 0; i < implicit->discretization().num_points(); ++i) {
+    plastic = std::max(plastic, implicit->state().history.plastic_strain[i]);
+    difference = std::max(difference, std::abs(implicit->state().history.plastic_strain[i] -
+                                               relaxed->state().history.plastic_strain[i]));
+  }
+  EXPECT_GT(plastic, 0);
+  EXPECT_LT(difference, 1e-5 * plastic);
+  std::cout << broken << " broken bonds; largest plastic strain " << plastic << ", difference " << difference << "\n";
+}
+
+TEST(NewtonKrylov, SameBitsOnOneAndTwoThreads) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const auto one = solve(notched_plate("implicit"));
+  omp_set_num_threads(2);
+  const auto two = solve(notched_plate("implicit"));
+  omp_set_num_threads(threads);
+  const std::size_t values = 3 * one->discretization().num_points();
+  EXPECT_EQ(std::memcmp(one->state().u.data(), two->state().u.data(), values * sizeof(double)), 0);
+  EXPECT_EQ(one->bonds().broken, two->bonds().broken);
+}
+
+TEST(NewtonKrylov, IterationLimitNamesTheStepIterationAndResidual) {
+  Problem p = bar_problem(16, 7, 1, "lps", 1, "implicit");
+  p.solver.parameters.set_integer("max_iterations", 1);
+  p.solver.parameters.set_number("tolerance", 1e-14);
+  const std::string message = first_step_error(p);
+  EXPECT_NE(message.find("Newton's method failed in load step 1 (time 1 s, load factor 1): no convergence in 1 "
+                         "Newton iterations, relative force residual"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("use more load_steps"), std::string::npos) << message;
+}
+
+TEST(NewtonKrylov, LoadedPieceThatCameApartIsNamed) {
+  // A bar cut in two and pulled at its free piece: the tangent is singular and no equilibrium exists; the
+  // error names the loose piece, its load and where it is.
+  const std::string message = first_step_error(pulled_bar(
+      "1e6", "", "0.0301", "no_fail: [held]\nboundary_conditions:\n  - {node_set: held, displacement: {x: \"0\"}}", "",
+      "max_iterations: 20", "implicit"));
+  EXPECT_NE(message.find("Newton's method failed in load step 1"), std::string::npos) << message;
+  EXPECT_NE(message.find("the body has come apart: 1 fragment without support carries a net load, the largest 1 N on "
+                         "10 points (fragment of point 30 at (0.0305, 0, 0) m)"),
+            std::string::npos)
+      << message;
+}
+
+TEST(NewtonKrylov, DeckRefusesVelocitiesAndMovingWalls) {
+  const std::string deck = R"(discretization: {dimension: 2, plane: stress, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  steel: {model: lps, density: 7800, youngs_modulus: 200 GPa, poisson_ratio: 0.3}
+bodies:
+  plate: {material: steel, shape: {box: {min: [0, 0], max: [0.02, 0.01]}}}
+node_sets:
+  left: {shape: {box: {min: [-1, -1], max: [0.002, 1]}}}
+initial_conditions:
+  - {velocity: {x: "1"}}
+boundary_conditions:
+  - {node_set: left, velocity: {x: "0"}}
+solver: {type: implicit, load_steps: 4, preconditioner: amg}
+)";
+  try {
+    parse_deck(deck, "deck.yaml", ".");
+    FAIL() << "deck accepted";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("deck.yaml:9:5: error: initial_conditions: an initial velocity has no meaning for solver "
+                           "type 'implicit'"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("deck.yaml:11:5: error: boundary_conditions: a prescribed velocity"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("preconditioner"), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace peridot
