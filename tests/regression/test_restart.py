@@ -29,6 +29,7 @@ DECKS = [  # (deck, [(ranks that write, ranks that restart)], steps between chec
     ("tests/regression/decks/mpi_symmetry_wall.yaml", [(2, 3)], EVERY),           # correspondence J2, symmetry released
     ("tests/regression/decks/jc_damage_small.yaml", [(1, 2)], 37),                # Johnson–Cook damage, bonds breaking
     ("tests/regression/decks/relaxation_notch.yaml", [(1, 2)], 1),  # dynamic relaxation, bonds breaking
+    ("tests/regression/decks/implicit_notch.yaml", [], 1),  # Newton–Krylov (bitwise on one rank only: test_mpi.py)
     ("tests/regression/decks/thermoviscoelastic_small.yaml", [(2, 3)], 3),  # thermoviscoelastic, stepped loads
     ("tests/regression/decks/energy_failure_small.yaml", [(1, 2)], EVERY),        # energy criterion
     ("tests/regression/decks/surface_correction_small.yaml", [], EVERY),          # surface correction

@@ -454,7 +454,11 @@ void NewtonKrylov::set_rigid_body_modes() {
 void NewtonKrylov::begin_load_step() { linear_iterations_ = 0; }
 
 void NewtonKrylov::equilibrate() {
-  if (!petsc_) setup();
+  // Fresh PETSc objects for every equilibrium: what they would carry from one to the next (the random vectors
+  // of GAMG's and Chebyshev's eigenvalue estimates draw on a generator that advances) would make an
+  // equilibrium depend on those before it, and a restart would not give the same bits.
+  petsc_.reset();
+  setup();
   Petsc& p = *petsc_;
   State& state = sim_.state();
   const Discretization& disc = sim_.discretization();

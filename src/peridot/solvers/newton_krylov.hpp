@@ -50,7 +50,8 @@ class NewtonKrylov final : public QuasiStatic {
  private:
   void equilibrate() override;
   void begin_load_step() override;
-  /// Starts PETSc (once per process) and builds the vectors, the matrices and the SNES (first equilibrium).
+  /// Starts PETSc (once per process) and builds the vectors, the matrices and the SNES (afresh for every
+  /// equilibrium, so that none depends on those before it: restarts give the same bits).
   void setup();
   /// The rigid-body modes of the deck's dimension as the preconditioner matrix's near-null space (GAMG).
   void set_rigid_body_modes();

@@ -17,8 +17,8 @@ namespace peridot {
 SolverInfo VelocityVerlet::info() {
   return {.name = name,
           .summary = "dynamics by velocity Verlet",
-          .description = "the solver: explicit dynamics (velocity Verlet, the default) or, with type: relaxation, "
-                         "quasi-static load steps (next section)",
+          .description = "the solver: explicit dynamics (velocity Verlet, the default) or, with type: relaxation "
+                         "or implicit, quasi-static load steps (next sections)",
           .keys = {{.key = "end_time", .unit = Unit::time, .range = positive, .description = "simulated time (s); or num_steps",
                     .required = true, .one_of = "duration"},
                    {.key = "num_steps", .type = ValueType::integer, .range = at_least_one, .description = "number of steps; or end_time",
