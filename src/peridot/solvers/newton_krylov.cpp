@@ -97,6 +97,7 @@ struct NewtonKrylov::Petsc {
   Vec x = nullptr, r = nullptr, base_x = nullptr, base_r = nullptr, work = nullptr;
   Mat J = nullptr, P = nullptr;
   SNES snes = nullptr;
+  bool assembled = false;       ///< P holds K of this equilibrium
   std::vector<PetscInt> block;  ///< per point, owned then ghosts: its global block row
   ~Petsc() {
     SNESDestroy(&snes);
@@ -204,6 +205,26 @@ void NewtonKrylov::evaluate_residual(const double* x, double* r, bool record) {
 void NewtonKrylov::assemble(const double* x) {
   set_displacement(x);
   Petsc& p = *petsc_;
+  const std::size_t owned = sim_.num_owned();
+  // Matrix-free, K only preconditions: built once per equilibrium (and the preconditioner with it,
+  // SNESSetLagPreconditioner), from the deformation at its start. As the Jacobian itself it follows x.
+  if (jacobian_ == Jacobian::bond_tangent || !p.assembled) assemble_bond_tangent();
+  p.assembled = true;
+  if (jacobian_ == Jacobian::matrix_free) {  // the base point of the finite differences: x and R(x)
+    Vec r = nullptr;
+    PERIDOT_PETSC(SNESGetFunction(p.snes, &r, nullptr, nullptr));
+    PetscScalar* base = nullptr;
+    PERIDOT_PETSC(VecGetArray(p.base_x, &base));
+    std::copy(x, x + 3 * owned, base);
+    PERIDOT_PETSC(VecRestoreArray(p.base_x, &base));
+    PERIDOT_PETSC(VecCopy(r, p.base_r));
+    PERIDOT_PETSC(MatAssemblyBegin(p.J, MAT_FINAL_ASSEMBLY));
+    PERIDOT_PETSC(MatAssemblyEnd(p.J, MAT_FINAL_ASSEMBLY));
+  }
+}
+
+void NewtonKrylov::assemble_bond_tangent() {
+  Petsc& p = *petsc_;
   const Discretization& disc = sim_.discretization();
   const BondList& bonds = sim_.bonds();
   const std::size_t owned = sim_.num_owned();
@@ -215,52 +236,50 @@ void NewtonKrylov::assemble(const double* x) {
   const double* X = disc.x.data();
   const double* u = sim_.state().u.data();
   const double* known = unknown.data();
-  PERIDOT_PETSC(MatZeroEntries(p.P));
-  double block[9];
+  // One block row at a time: the point's own block first, then one per intact bond (a point and its family
+  // are distinct columns), in a single insertion.
+  std::vector<PetscInt> columns;
+  std::vector<double> values, row_values;
   for (std::size_t i = 0; i < owned; ++i) {
-    double diagonal[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    const PetscInt row = p.block[i];
+    columns.assign(1, p.block[i]);
+    values.assign(9, 0.0);
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
       if (bond_k_[b] == 0) continue;
       const std::uint32_t j = bonds.neighbors[b];
-      double e[3], length = 0;
+      double e[3], length2 = 0;
       for (int d = 0; d < 3; ++d) {
         e[d] = X[3 * j + d] + u[3 * j + d] - X[3 * i + d] - u[3 * i + d];
-        length += e[d] * e[d];
+        length2 += e[d] * e[d];
       }
-      length = std::sqrt(length);
-      if (!(length > 0)) continue;
-      const double s = bond_k_[b] * disc.volume[i];
+      if (!(length2 > 0)) continue;
+      const double s = bond_k_[b] * disc.volume[i] / length2;
+      columns.push_back(p.block[j]);
+      const std::size_t at = values.size();
+      values.resize(at + 9);
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) {
-          const double kac = s * e[a] * e[c] / (length * length);
-          diagonal[3 * a + c] += kac;
-          block[3 * a + c] = known[3 * i + a] * known[3 * j + c] * -kac;
+          const double k = s * e[a] * e[c];
+          values[3 * a + c] += k;
+          values[at + 3 * a + c] = known[3 * i + a] * known[3 * j + c] * -k;
         }
-      const PetscInt column = p.block[j];
-      PERIDOT_PETSC(MatSetValuesBlocked(p.P, 1, &row, 1, &column, block, ADD_VALUES));
     }
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) {
-        if (known[3 * i + a] == 0 || known[3 * i + c] == 0) diagonal[3 * a + c] = 0;
-        if (a == c && known[3 * i + a] == 0) diagonal[3 * a + c] = diagonal_[i];
+        if (known[3 * i + a] == 0 || known[3 * i + c] == 0) values[3 * a + c] = 0;
+        if (a == c && known[3 * i + a] == 0) values[3 * a + c] = diagonal_[i];
       }
-    PERIDOT_PETSC(MatSetValuesBlocked(p.P, 1, &row, 1, &row, diagonal, ADD_VALUES));
+    // The block row in one call, its values row by row across all its blocks (PETSc's layout).
+    const std::size_t n = columns.size();
+    row_values.resize(9 * n);
+    for (std::size_t k = 0; k < n; ++k)
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) row_values[3 * n * a + 3 * k + c] = values[9 * k + 3 * a + c];
+    const PetscInt row = p.block[i];
+    PERIDOT_PETSC(MatSetValuesBlocked(p.P, 1, &row, static_cast<PetscInt>(n), columns.data(), row_values.data(),
+                                      INSERT_VALUES));
   }
   PERIDOT_PETSC(MatAssemblyBegin(p.P, MAT_FINAL_ASSEMBLY));
   PERIDOT_PETSC(MatAssemblyEnd(p.P, MAT_FINAL_ASSEMBLY));
-  if (jacobian_ == Jacobian::matrix_free) {  // the base point of the finite differences: x and R(x)
-    Vec r = nullptr;
-    PERIDOT_PETSC(SNESGetFunction(p.snes, &r, nullptr, nullptr));
-    std::vector<double> copy(3 * owned);
-    PetscScalar* base = nullptr;
-    PERIDOT_PETSC(VecGetArray(p.base_x, &base));
-    std::copy(x, x + 3 * owned, base);
-    PERIDOT_PETSC(VecRestoreArray(p.base_x, &base));
-    PERIDOT_PETSC(VecCopy(r, p.base_r));
-    PERIDOT_PETSC(MatAssemblyBegin(p.J, MAT_FINAL_ASSEMBLY));
-    PERIDOT_PETSC(MatAssemblyEnd(p.J, MAT_FINAL_ASSEMBLY));
-  }
 }
 
 static PetscErrorCode jacobian_product(Mat J, Vec v, Vec y) {
@@ -382,6 +401,8 @@ void NewtonKrylov::setup() {
   PERIDOT_PETSC(SNESSetTolerances(p.snes, 0.0, 0.0, 0.0, static_cast<PetscInt>(max_iterations_), 1000000000));
   PERIDOT_PETSC(SNESSetConvergenceTest(p.snes, convergence_test, this, nullptr));
   PERIDOT_PETSC(SNESSetMaxLinearSolveFailures(p.snes, 1000000000));
+  // Matrix-free, the preconditioner is built once per equilibrium (−1: never again after the first).
+  if (jacobian_ == Jacobian::matrix_free) PERIDOT_PETSC(SNESSetLagPreconditioner(p.snes, -1));
   KSP ksp = nullptr;
   PERIDOT_PETSC(SNESGetKSP(p.snes, &ksp));
   PERIDOT_PETSC(KSPSetType(ksp, linear_solver_ == "cg" ? KSPCG : KSPGMRES));

@@ -63,7 +63,8 @@ class NewtonKrylov final : public QuasiStatic {
  public:  // called from PETSc's callbacks (newton_krylov.cpp)
   /// R(x) into r (PETSc arrays of the owned dofs); with record, its relative residual becomes the iterate's.
   void evaluate_residual(const double* x, double* r, bool record);
-  /// Assembles K at x into the preconditioner matrix (and the base point of the matrix-free Jacobian).
+  /// The Jacobian at x: the base point of the matrix-free one (K assembled at the first iterate of the
+  /// equilibrium only), or K at x.
   void assemble(const double* x);
   /// The iterate's relative residual and whether it is finite (the last recorded residual()).
   double recorded_residual() const { return recorded_; }
@@ -76,6 +77,8 @@ class NewtonKrylov final : public QuasiStatic {
  private:
   /// Copies x into u (free, active dofs) and refreshes the ghosts.
   void set_displacement(const double* x);
+  /// K at the current u into the preconditioner matrix.
+  void assemble_bond_tangent();
   bool active(std::size_t k) const;
 
   enum class Jacobian { matrix_free, bond_tangent };
