@@ -502,14 +502,16 @@ class Translator {
         }
       } else if (e.name == "QuasiStatic" || e.name == "NOXQuasiStatic") {
         found = true;
-        out["type"] = "relaxation";
+        // Both of Peridigm's quasi-static solvers are Newton methods, as Peridot's implicit solver is (its
+        // iterations are Newton iterations too).
+        out["type"] = "implicit";
         out["end_time"] = end_time;
         for (const Entry& p : e.children) {
           if (p.name == "Number of Load Steps") out["load_steps"] = YAML::Load(p.value);
           else if (p.name == "Maximum Solver Iterations") out["max_iterations"] = YAML::Load(p.value);
           else if (p.name == "Relative Tolerance") out["tolerance"] = YAML::Load(p.value);
-          else note(p, fmt::format("of the {} solver has no equivalent (Peridot solves it by adaptive dynamic relaxation "
-                                   "to a relative tolerance) and is left out", e.name));
+          else note(p, fmt::format("of the {} solver has no equivalent (Peridot's implicit solver stops at a relative "
+                                   "force residual and chooses its own linear solver) and is left out", e.name));
         }
       } else {
         note(e, "solver has no equivalent and is left out");
