@@ -136,6 +136,8 @@ struct Parser {
     p.partial_volume = partial == "extended"  ? PartialVolumeKind::extended
                        : partial == "horizon" ? PartialVolumeKind::horizon
                                               : PartialVolumeKind::none;
+    p.quadrature = r["quadrature"].text == "isotropic" ? QuadratureKind::isotropic : QuadratureKind::one_point;
+    p.quadrature_pos = r["quadrature"].pos;
     HorizonInput h = read_horizon(r);
     if (h.given()) p.horizon = resolve_horizon(h, "discretization");
   }
@@ -459,6 +461,13 @@ struct Parser {
   /// The lattice spacing is needed as soon as one body is a shape filled on the lattice, or partial volumes
   /// are asked for.
   void check_spacing_given() {
+    if (p.quadrature == QuadratureKind::isotropic)
+      for (const BodySpec& b : p.bodies)
+        if (!b.shape) {
+          ctx.error(p.quadrature_pos, "discretization.quadrature",
+                    fmt::format("isotropic quadrature is fitted to the lattice; body '{}' is read from a file", b.name));
+          break;
+        }
     if (spacing) return;
     if (p.partial_volume != PartialVolumeKind::none) {
       ctx.error(discretization_pos, "discretization",

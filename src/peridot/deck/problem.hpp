@@ -21,6 +21,9 @@ enum class PlaneKind { none, stress, strain };                      ///< none in
 /// horizon). `extended` also bonds the cells centred just beyond δ (up to δ + ½Δx), which converges
 /// to the exact integrals; `horizon` bonds only |ξ| ≤ δ, the convention of LAMMPS PERI.
 enum class PartialVolumeKind { none, extended, horizon };
+/// How a bond sum weighs a neighbour: its volume (one_point), or times the isotropic direction weight
+/// (neighbor/quadrature.hpp).
+enum class QuadratureKind { one_point, isotropic };
 /// Zoltan's geometric partitioners for a distributed run (parallel/partition.hpp).
 enum class PartitionMethod { rcb, rib, hsfc };
 
@@ -285,6 +288,8 @@ struct Problem {
   double jitter = 0;     ///< fraction of Δx, uniform in ±jitter·Δx per coordinate
   std::uint64_t seed = 1;
   PartialVolumeKind partial_volume = PartialVolumeKind::none;
+  QuadratureKind quadrature = QuadratureKind::one_point;
+  SourcePos quadrature_pos;  ///< where discretization.quadrature is (refusals of a block's model point here)
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   std::vector<PrecrackSpec> precracks;

@@ -91,6 +91,8 @@ void emit_discretization(YAML::Emitter& out, const Problem& p) {
   out << YAML::Key << "seed" << YAML::Value << p.seed;
   const char* partial_volume[] = {"none", "extended", "horizon"};
   out << YAML::Key << "partial_volume" << YAML::Value << partial_volume[static_cast<int>(p.partial_volume)];
+  out << YAML::Key << "quadrature" << YAML::Value
+      << (p.quadrature == QuadratureKind::isotropic ? "isotropic" : "one_point");
   out << YAML::EndMap;
 }
 

@@ -227,7 +227,13 @@ std::vector<SectionSpec> make_sections() {
                  .description = "weigh bonds by the part of the neighbour's cell inside the horizon: none; extended "
                                 "(also bonds cells centred up to δ + Δx/2, converges); horizon (bonds within δ only, "
                                 "as LAMMPS PERI)",
-                 .choices = {"none", "extended", "horizon"}}}});
+                 .choices = {"none", "extended", "horizon"}},
+                {.key = "quadrature", .type = VT::choice, .default_yaml = "one_point",
+                 .description = "how a bond sum weighs a neighbour: one_point (its volume); isotropic (times a "
+                                "direction weight fitted so that the lattice family's stiffness is isotropic and equals "
+                                "the continuum's: a solution converges to classical elasticity at second order in δ at "
+                                "fixed δ/Δx; pmb and the lps models on lattice bodies; docs/algorithms.md)",
+                 .choices = {"one_point", "isotropic"}}}});
   s.push_back({"materials.<name>", "a material: a model from the registry and its parameters", common_material_keys()});
   s.push_back({"materials.<name>.damage", "bond breaking; omit for no damage", damage_keys()});
   for (const ModelInfo& model : material_models())  // the models' nested sections, each path once

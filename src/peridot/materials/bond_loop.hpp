@@ -90,13 +90,19 @@ inline double bond_mechanical_extension(const ModelContext& ctx, std::size_t i, 
   return e - 0.5 * (ctx.thermal_stretch[i] + ctx.thermal_stretch[j]) * xi;
 }
 
-/// Neighbour volume seen by a bond, with the partial-volume factor when enabled. The pair horizon is
-/// the larger of the two blocks' (as in the neighbour search).
+/// Neighbour volume seen by a bond, with the partial-volume factor when enabled (the pair horizon is the
+/// larger of the two blocks', as in the neighbour search) and the isotropic quadrature's direction weight of
+/// point i's block when its deck asks for it.
 inline double neighbor_volume(const ModelContext& ctx, std::size_t i, std::size_t j, double xi) {
-  const double v = ctx.disc->volume[j];
-  if (ctx.partial_volume_radius <= 0) return v;
+  double v = ctx.disc->volume[j];
   const auto& blocks = ctx.disc->block;
-  const double horizon = std::max(ctx.params[blocks[i]].horizon, ctx.params[blocks[j]].horizon);
+  const MaterialParams& p = ctx.params[blocks[i]];
+  if (p.quadrature.on) {
+    const double* x = ctx.disc->x.data();
+    v *= quadrature_weight(p.quadrature, x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2], xi);
+  }
+  if (ctx.partial_volume_radius <= 0) return v;
+  const double horizon = std::max(p.horizon, ctx.params[blocks[j]].horizon);
   return v * partial_volume_factor(xi, horizon, ctx.partial_volume_radius);
 }
 

@@ -39,6 +39,7 @@ struct Lps : ModelBase {
   static ModelInfo info();
   static constexpr bool uses_dilatation = true;
   static constexpr bool corrects_surfaces = true;
+  static constexpr int quadrature_moment_power = 2;
   /// κ = 2 − m̃/m per point (surface_correction only).
   static constexpr int point_constant_arrays = 1;
 

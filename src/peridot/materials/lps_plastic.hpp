@@ -58,6 +58,7 @@ struct LpsPlastic : ModelBase {
   static constexpr std::string_view name = "lps_plastic";
   static ModelInfo info();
   static constexpr bool uses_dilatation = true;
+  static constexpr int quadrature_moment_power = 2;
   static constexpr int bond_history_arrays = 1;  ///< bond[0] = e^dp
   /// The step's scratch of the return map, per point (MaterialHistory::point[k]).
   enum PointArrayIndex { yield_scale, plastic_strain_increment, deviatoric_moment, released_extension };

@@ -29,6 +29,7 @@ struct LpsViscoelastic : ModelBase {
   static constexpr std::string_view name = "lps_viscoelastic";
   static ModelInfo info();
   static constexpr bool uses_dilatation = true;
+  static constexpr int quadrature_moment_power = 2;
   static constexpr int bond_history_arrays = 2;  ///< bond[0] = e^b, bond[1] = e^d of the last step
 
   struct Params : LpsConstants {

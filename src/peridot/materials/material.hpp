@@ -10,6 +10,7 @@
 
 #include "peridot/deck/problem.hpp"
 #include "peridot/neighbor/influence.hpp"
+#include "peridot/neighbor/quadrature.hpp"
 
 namespace peridot {
 
@@ -27,6 +28,9 @@ struct MaterialParams {
   /// The deck's `surface_correction` of a model that applies the energy method's bond factors
   /// (ModelBase::corrects_surfaces); false for the others.
   bool surface_correction = false;
+  /// discretization.quadrature: isotropic: the direction weight of this block's bonds (neighbor/quadrature.hpp);
+  /// off by default. The sums at a point use the weights of the point's own block.
+  IsotropicQuadrature quadrature;
   /// Bond fails when its stretch exceeds this; +∞ without damage.
   double critical_stretch = std::numeric_limits<double>::infinity();
   /// Gc (J/m²) of the energy criterion (damage criterion: energy, damage/energy_failure.hpp), 0 without it;

@@ -45,6 +45,10 @@ struct ModelBase {
   static constexpr int released_extension_array = -1;
   /// Per-point constants (ModelContext::point_constants[k]) that calibrate fills once.
   static constexpr int point_constant_arrays = 0;
+  /// The power p of ξ in the fourth moment Σ ω ξᵖ n⊗n⊗n⊗n V that makes the model's stiffness under a
+  /// homogeneous strain (pmb 1, the lps family 2): the isotropic quadrature fits its direction weight to it
+  /// (neighbor/quadrature.hpp). 0: the model's sums are not of that form and the deck refuses the quadrature.
+  static constexpr int quadrature_moment_power = 0;
 
   /// The extension a bond adds to the dilatation sum Σ ω ξ ê V (e: its mechanical extension, xi: |ξ|).
   static double dilatation_extension(const KernelFields&, std::uint64_t /*bond*/, double e, double /*xi*/) { return e; }

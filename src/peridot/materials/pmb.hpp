@@ -20,6 +20,7 @@ struct Pmb : ModelBase {
   static ModelInfo info();
   /// surface_correction: the bond loops hand the kernels ω G (the pair's micromodulus c0 ω G).
   static constexpr bool corrects_surfaces = true;
+  static constexpr int quadrature_moment_power = 1;
 
   struct Params {
     /// Micromodulus c0 (N/m⁶ in 3D): bond micromodulus c(ξ) = c0 ω(ξ).

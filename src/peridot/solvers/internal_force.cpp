@@ -604,6 +604,8 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
     using Model = decltype(model);
     const double break_limit = fail_bonds ? p.critical_stretch : std::numeric_limits<double>::infinity();
     const bool scaled = p.surface_correction && fields.bond_scale;  // the AVX-512 loops have no bond factor
+    // The run loops have no quadrature direction weight: such a block takes the general path.
+    const bool runs = vector_path && !p.quadrature.on;
     constexpr int released_array = Model::released_extension_array;
     double* released = nullptr;  // what θ lost to the bonds breaking now, where the model keeps it
     if constexpr (released_array >= 0)
@@ -623,9 +625,9 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
         double sum = 0, lost = 0;
-        const bool in_place = vector_path && !thermal && !scaled &&
+        const bool in_place = runs && !thermal && !scaled &&
                               dilatation_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, sum, lost);
-        if (vector_path && !in_place) {
+        if (runs && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             with_flags(fail_bonds, thermal, [&](auto check, auto heated) {
@@ -653,7 +655,7 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
           }
           sum += term;
         };
-        if (!vector_path)
+        if (!runs)
           for (std::uint64_t b = run.b_begin; b < run.b_end; ++b) general_bond(b);
         for (std::uint64_t b = bonds.offsets[i]; b < run.b_begin; ++b) general_bond(b);
         for (std::uint64_t b = run.b_end; b < bonds.offsets[i + 1]; ++b) general_bond(b);
@@ -707,6 +709,8 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
     const double infinity = std::numeric_limits<double>::infinity();
     const double break_limit = fail_bonds ? p.critical_stretch : infinity;
     const bool scaled = p.surface_correction && fields.bond_scale;  // the AVX-512 loops have no bond factor
+    // The run loops have no quadrature direction weight: such a block takes the general path.
+    const bool runs = vector_path && !p.quadrature.on;
     const int chunk = points_per_chunk(range);
     // Clang cannot reach compute_internal_force's locals from the lambda inside the parallel region below:
     // this lambda's own names for them.
@@ -723,9 +727,9 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
         double fi[3] = {0, 0, 0};
-        const bool in_place = vector_path && !thermal && !scaled &&
+        const bool in_place = runs && !thermal && !scaled &&
                               force_in_place<Dim, Model>(run, p, mp, fields, i, neighbors, broken, intact, fi);
-        if (vector_path && !in_place) {
+        if (runs && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
             with_flags(fail_bonds, thermal, [&](auto check, auto heated) {
@@ -762,7 +766,7 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
           fy += carried * g.y[1];
           if constexpr (Dim == 3) fz += carried * g.y[2];
         };
-        if (!vector_path)
+        if (!runs)
           for (std::uint64_t b = run.b_begin; b < run.b_end; ++b) general_bond(b);
         for (std::uint64_t b = bonds.offsets[i]; b < run.b_begin; ++b) general_bond(b);
         for (std::uint64_t b = run.b_end; b < bonds.offsets[i + 1]; ++b) general_bond(b);

@@ -253,6 +253,16 @@ void NewtonKrylov::assemble_bond_tangent() {
       }
       if (!(length2 > 0)) continue;
       const double s = bond_k_[b] * disc.volume[i] / length2;
+      // A bond between an unknown and a prescribed point couples nothing in K: no block is stored for it,
+      // so that GAMG's graph sees no edge there (stored zeros would be edges at its default threshold, and
+      // aggregates of prescribed points gave it singular coarse blocks).
+      const bool coupled = known[3 * i] + known[3 * i + 1] + known[3 * i + 2] > 0 &&
+                           known[3 * j] + known[3 * j + 1] + known[3 * j + 2] > 0;
+      if (!coupled) {
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c) values[3 * a + c] += s * e[a] * e[c];
+        continue;
+      }
       columns.push_back(p.block[j]);
       const std::size_t at = values.size();
       values.resize(at + 9);

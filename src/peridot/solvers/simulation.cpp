@@ -32,6 +32,26 @@ std::vector<NodeSet> local_node_sets(const std::vector<NodeSet>& global, const s
   return local;
 }
 
+/// The isotropic quadrature's direction weight of a body's block (discretization.quadrature: isotropic), fitted
+/// to its model's stiffness moment; a model whose sums are not of that form is refused.
+IsotropicQuadrature fit_block_quadrature(const Problem& problem, const BodySpec& body, const MaterialParams& p,
+                                         const NeighborhoodOptions& neighborhood) {
+  const int power = with_model(p.model, [](auto model) { return decltype(model)::quadrature_moment_power; });
+  if (power == 0) {
+    const std::string_view name = with_model(p.model, [](auto model) { return decltype(model)::name; });
+    throw InputError(problem.quadrature_pos,
+                     fmt::format("isotropic quadrature applies to pmb and the lps models; body '{}' has model {}",
+                                 body.name, name));
+  }
+  return fit_isotropic_quadrature({.dimension = problem.dimension,
+                                   .spacing = problem.spacing,
+                                   .horizon = body.horizon,
+                                   .influence = p.influence,
+                                   .partial_volume_radius = neighborhood.partial_volume_radius,
+                                   .bond_beyond_horizon = neighborhood.bond_beyond_horizon,
+                                   .moment_power = power});
+}
+
 }  // namespace
 
 Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(problem), comm_(comm) {
@@ -46,6 +66,8 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   for (const BodySpec& body : problem_.bodies) {
     model_.add_block(resolve_material(problem_.material_of(body), body.horizon, problem_));
     neighborhood.horizon_of_block.push_back(body.horizon);
+    if (problem_.quadrature == QuadratureKind::isotropic)
+      model_.params.back().quadrature = fit_block_quadrature(problem_, body, model_.params.back(), neighborhood);
   }
   std::vector<std::uint8_t> no_fail;  // per global point
   auto mark_no_fail = [&](const Discretization& all, const std::vector<NodeSet>& sets) {
