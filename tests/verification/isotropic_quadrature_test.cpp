@@ -7,11 +7,15 @@
 //  - Second-order consistency: a quadratic displacement field gives, at points deeper than 2δ, the force
 //    density of the Navier operator μ∇²u + (λ + μ)∇(∇·u) (what makes the manufactured-solution study of
 //    examples/convergence_to_elasticity converge at second order in δ); the one-point quadrature does not.
+//  - The deck refuses it, at the key, for a body read from a file and for a model whose sums are not moments.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <tuple>
 
+#include "peridot/deck/deck.hpp"
 #include "peridot/neighbor/influence.hpp"
 #include "peridot/neighbor/quadrature.hpp"
 #include "peridot/solvers/internal_force.hpp"
@@ -232,6 +236,51 @@ INSTANTIATE_TEST_SUITE_P(Models, QuadratureBlock,
                                            std::make_tuple(2, PlaneKind::strain, std::string("lps")),
                                            std::make_tuple(3, PlaneKind::none, std::string("pmb"))),
                          block_name);
+
+std::string refusal(const std::string& deck, const std::string& directory) {
+  try {
+    Simulation sim(parse_deck(deck, "deck.yaml", directory));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(IsotropicQuadrature, DeckRefusesPointFilesAndOtherModels) {
+  const std::string lattice = R"(discretization:
+  dimension: 2
+  plane: stress
+  spacing: 1 mm
+  horizon_factor: 3.015
+  quadrature: isotropic
+materials:
+  glass: {model: MODEL, density: 2500, youngs_modulus: 70 GPa, poisson_ratio: 0.2}
+bodies:
+  plate: {material: glass, BODY}
+solver: {type: explicit, num_steps: 1}
+)";
+  auto deck = [&](const std::string& model, const std::string& body) {
+    std::string d = lattice;
+    d.replace(d.find("MODEL"), 5, model);
+    d.replace(d.find("BODY"), 4, body);
+    return d;
+  };
+  const std::string box = "shape: {box: {min: [0, 0], max: [0.01, 0.01]}}";
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "peridot_quadrature_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "points.txt") << "0 0 1e-6\n0.001 0 1e-6\n";
+  EXPECT_EQ(refusal(deck("lps", box), dir.string()), "accepted");
+  const std::string from_file = refusal(deck("lps", "points_file: points.txt"), dir.string());
+  EXPECT_NE(from_file.find("deck.yaml:6:15: error: discretization.quadrature: isotropic quadrature is fitted to the "
+                           "lattice; body 'plate' is read from a file"),
+            std::string::npos)
+      << from_file;
+  const std::string other = refusal(deck("thermoviscoelastic", box), dir.string());
+  EXPECT_NE(other.find("deck.yaml:6:15"), std::string::npos) << other;
+  EXPECT_NE(other.find("isotropic quadrature applies to pmb and the lps models; body 'plate' has model thermoviscoelastic"),
+            std::string::npos)
+      << other;
+}
 
 }  // namespace
 }  // namespace peridot

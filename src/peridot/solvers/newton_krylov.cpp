@@ -43,7 +43,7 @@ SolverInfo NewtonKrylov::info() {
                        .choices = {"gmres", "cg"}});
   info.keys.push_back({.key = "preconditioner", .type = ValueType::choice, .default_yaml = "gamg",
                        .description = "of the assembled pmb-like tangent: gamg (PETSc's algebraic multigrid, the "
-                                      "rigid-body modes as its near-null space), ilu (block Jacobi with ILU(0) per "
+                                      "translations as its near-null space), ilu (block Jacobi with ILU(0) per "
                                       "rank when distributed), jacobi or none",
                        .choices = {"gamg", "ilu", "jacobi", "none"}});
   info.keys.push_back({.key = "linear_tolerance", .default_yaml = "1e-6", .range = {0, 1, true, true},
@@ -98,7 +98,7 @@ struct NewtonKrylov::Petsc {
   Mat J = nullptr, P = nullptr;
   SNES snes = nullptr;
   bool assembled = false;       ///< P holds K of this equilibrium
-  std::vector<PetscInt> block;  ///< per point, owned then ghosts: its global block row
+  std::vector<PetscInt> block;  ///< per point, owned then ghosts: its global block row, −1 if it has none
   ~Petsc() {
     SNESDestroy(&snes);
     MatDestroy(&J);
@@ -182,8 +182,13 @@ bool NewtonKrylov::active(std::size_t k) const {
 
 void NewtonKrylov::set_displacement(const double* x) {
   double* u = sim_.state().u.data();
-  const std::size_t dofs = 3 * sim_.num_owned();
-  for (std::size_t k = 0; k < dofs; ++k) u[k] = active(k) ? x[k] : target_.data()[k];
+  const double* target = target_.data();
+  std::copy(target, target + 3 * sim_.num_owned(), u);
+  for (std::size_t m = 0; m < unknown_points_.size(); ++m)
+    for (int c = 0; c < width_; ++c) {
+      const std::size_t k = 3 * unknown_points_[m] + static_cast<std::size_t>(c);
+      if (active(k)) u[k] = x[width_ * m + static_cast<std::size_t>(c)];
+    }
   sim_.exchange_ghosts(sim_.state().u);
 }
 
@@ -192,9 +197,13 @@ void NewtonKrylov::evaluate_residual(const double* x, double* r, bool record) {
   evaluate_residual_force(force_);
   const double* volume = sim_.discretization().volume.data();
   const double* target = target_.data();
-  const std::size_t dofs = 3 * sim_.num_owned();
-  for (std::size_t k = 0; k < dofs; ++k)
-    r[k] = active(k) ? -force_[k] * volume[k / 3] : diagonal_[k / 3] * (x[k] - target[k]);
+  for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
+    const std::size_t i = unknown_points_[m];
+    for (int c = 0; c < width_; ++c) {
+      const std::size_t k = 3 * i + static_cast<std::size_t>(c), row = width_ * m + static_cast<std::size_t>(c);
+      r[row] = active(k) ? -force_[k] * volume[i] : diagonal_[i] * (x[row] - target[k]);
+    }
+  }
   if (!record) return;
   if (!started_) start_norm_ = norm(force_), started_ = true;
   const Residual relative = relative_residual(force_, start_norm_);
@@ -205,7 +214,6 @@ void NewtonKrylov::evaluate_residual(const double* x, double* r, bool record) {
 void NewtonKrylov::assemble(const double* x) {
   set_displacement(x);
   Petsc& p = *petsc_;
-  const std::size_t owned = sim_.num_owned();
   // Matrix-free, K only preconditions: built once per equilibrium (and the preconditioner with it,
   // SNESSetLagPreconditioner), from the deformation at its start. As the Jacobian itself it follows x.
   if (jacobian_ == Jacobian::bond_tangent || !p.assembled) assemble_bond_tangent();
@@ -215,7 +223,7 @@ void NewtonKrylov::assemble(const double* x) {
     PERIDOT_PETSC(SNESGetFunction(p.snes, &r, nullptr, nullptr));
     PetscScalar* base = nullptr;
     PERIDOT_PETSC(VecGetArray(p.base_x, &base));
-    std::copy(x, x + 3 * owned, base);
+    std::copy(x, x + width_ * unknown_points_.size(), base);
     PERIDOT_PETSC(VecRestoreArray(p.base_x, &base));
     PERIDOT_PETSC(VecCopy(r, p.base_r));
     PERIDOT_PETSC(MatAssemblyBegin(p.J, MAT_FINAL_ASSEMBLY));
@@ -240,7 +248,7 @@ void NewtonKrylov::assemble_bond_tangent() {
   // are distinct columns), in a single insertion.
   std::vector<PetscInt> columns;
   std::vector<double> values, row_values;
-  for (std::size_t i = 0; i < owned; ++i) {
+  for (const std::uint32_t i : unknown_points_) {
     columns.assign(1, p.block[i]);
     values.assign(9, 0.0);
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
@@ -253,12 +261,8 @@ void NewtonKrylov::assemble_bond_tangent() {
       }
       if (!(length2 > 0)) continue;
       const double s = bond_k_[b] * disc.volume[i] / length2;
-      // A bond between an unknown and a prescribed point couples nothing in K: no block is stored for it,
-      // so that GAMG's graph sees no edge there (stored zeros would be edges at its default threshold, and
-      // aggregates of prescribed points gave it singular coarse blocks).
-      const bool coupled = known[3 * i] + known[3 * i + 1] + known[3 * i + 2] > 0 &&
-                           known[3 * j] + known[3 * j + 1] + known[3 * j + 2] > 0;
-      if (!coupled) {
+      // A fully prescribed neighbour is not an unknown of the system: its bond adds to the diagonal only.
+      if (p.block[j] < 0) {
         for (int a = 0; a < 3; ++a)
           for (int c = 0; c < 3; ++c) values[3 * a + c] += s * e[a] * e[c];
         continue;
@@ -278,12 +282,13 @@ void NewtonKrylov::assemble_bond_tangent() {
         if (known[3 * i + a] == 0 || known[3 * i + c] == 0) values[3 * a + c] = 0;
         if (a == c && known[3 * i + a] == 0) values[3 * a + c] = diagonal_[i];
       }
-    // The block row in one call, its values row by row across all its blocks (PETSc's layout).
-    const std::size_t n = columns.size();
-    row_values.resize(9 * n);
+    // The block row in one call, its values row by row across all its blocks (PETSc's layout), the
+    // deck's dimension's components of each 3×3 block.
+    const std::size_t n = columns.size(), w = static_cast<std::size_t>(width_);
+    row_values.resize(w * w * n);
     for (std::size_t k = 0; k < n; ++k)
-      for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c) row_values[3 * n * a + 3 * k + c] = values[9 * k + 3 * a + c];
+      for (std::size_t a = 0; a < w; ++a)
+        for (std::size_t c = 0; c < w; ++c) row_values[w * n * a + w * k + c] = values[9 * k + 3 * a + c];
     const PetscInt row = p.block[i];
     PERIDOT_PETSC(MatSetValuesBlocked(p.P, 1, &row, static_cast<PetscInt>(n), columns.data(), row_values.data(),
                                       INSERT_VALUES));
@@ -353,35 +358,50 @@ void NewtonKrylov::setup() {
   const BondList& bonds = sim_.bonds();
   const std::size_t owned = sim_.num_owned();
   p.comm = comm.serial() ? PETSC_COMM_SELF : comm.mpi();
-  const auto n = static_cast<PetscInt>(3 * owned);
+  // The unknowns: the points with a free dof, `width_` components each (the deck's dimension); fully
+  // prescribed points are left out of the system, so that GAMG aggregates the body only (their identity rows
+  // made aggregates whose coarse blocks were singular).
+  width_ = sim_.problem().dimension;
+  unknown_points_.clear();
+  for (std::size_t i = 0; i < owned; ++i)
+    for (int c = 0; c < width_; ++c)
+      if (active(3 * i + static_cast<std::size_t>(c))) {
+        unknown_points_.push_back(static_cast<std::uint32_t>(i));
+        break;
+      }
+  const auto n = static_cast<PetscInt>(width_ * unknown_points_.size());
   PERIDOT_PETSC(VecCreate(p.comm, &p.x));
   PERIDOT_PETSC(VecSetSizes(p.x, n, PETSC_DETERMINE));
-  PERIDOT_PETSC(VecSetBlockSize(p.x, 3));
+  PERIDOT_PETSC(VecSetBlockSize(p.x, width_));
   PERIDOT_PETSC(VecSetType(p.x, VECSTANDARD));
   for (Vec* v : {&p.r, &p.base_x, &p.base_r, &p.work}) PERIDOT_PETSC(VecDuplicate(p.x, v));
   PetscInt first = 0, global = 0;
   PERIDOT_PETSC(VecGetOwnershipRange(p.x, &first, nullptr));
   PERIDOT_PETSC(VecGetSize(p.x, &global));
 
-  // Every point's global block row: owned points in their local order from this rank's first row, ghosts
-  // from their owners (a double holds the index exactly).
+  // Every point's global block row: the unknown points in their local order from this rank's first row,
+  // ghosts from their owners (a double holds the index exactly), −1 for a point outside the system.
   VectorField index(disc.num_points());
-  for (std::size_t i = 0; i < owned; ++i) {
-    const double row = static_cast<double>(first / 3) + static_cast<double>(i);
-    index.set(i, Vec3{row, row, row});
+  for (std::size_t i = 0; i < owned; ++i) index.set(i, Vec3{-1, -1, -1});
+  for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
+    const double row = static_cast<double>(first / width_) + static_cast<double>(m);
+    index.set(unknown_points_[m], Vec3{row, row, row});
   }
   sim_.exchange_ghosts(index);
   p.block.resize(disc.num_points());
   for (std::size_t i = 0; i < disc.num_points(); ++i) p.block[i] = static_cast<PetscInt>(index.get(i).x);
 
-  // Preallocation per block row: the point itself and its family, split into owned and ghost columns.
-  std::vector<PetscInt> on_rank(owned, 1), off_rank(owned, 0);
+  // Preallocation per block row: the point itself and its unknown neighbours, owned and ghost columns apart.
+  std::vector<PetscInt> on_rank(unknown_points_.size(), 1), off_rank(unknown_points_.size(), 0);
+  for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
+    const std::uint32_t i = unknown_points_[m];
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
+      if (const std::uint32_t j = bonds.neighbors[b]; p.block[j] >= 0) ++(j < owned ? on_rank[m] : off_rank[m]);
+  }
   double shortest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < owned; ++i)
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-      const std::uint32_t j = bonds.neighbors[b];
-      ++(j < owned ? on_rank[i] : off_rank[i]);
-      const Vec3 d = disc.x.get(j) - disc.x.get(i);
+      const Vec3 d = disc.x.get(bonds.neighbors[b]) - disc.x.get(i);
       shortest = std::min(shortest, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z));
     }
   length_scale_ = comm.min(shortest);
@@ -389,10 +409,13 @@ void NewtonKrylov::setup() {
   PERIDOT_PETSC(MatCreate(p.comm, &p.P));
   PERIDOT_PETSC(MatSetSizes(p.P, n, n, global, global));
   PERIDOT_PETSC(MatSetType(p.P, MATAIJ));
-  PERIDOT_PETSC(MatSetBlockSize(p.P, 3));
-  PERIDOT_PETSC(MatXAIJSetPreallocation(p.P, 3, on_rank.data(), off_rank.data(), nullptr, nullptr));
+  PERIDOT_PETSC(MatSetBlockSize(p.P, width_));
+  PERIDOT_PETSC(MatXAIJSetPreallocation(p.P, width_, on_rank.data(), off_rank.data(), nullptr, nullptr));
   PERIDOT_PETSC(MatSetOption(p.P, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  set_rigid_body_modes();
+  // GAMG's near-null space: without one it takes the block size's translations. The rotations as well (what
+  // PETSc suggests for elasticity) made coarse operators with zero diagonal entries (an aggregate on which the
+  // rigid-body modes are dependent, a few points in a row, gives the prolongator zero columns), on which SOR
+  // broke down: the 204 800-point bar and the notched plate once its crack grew did not converge.
   if (jacobian_ == Jacobian::matrix_free) {
     PERIDOT_PETSC(MatCreateShell(p.comm, n, n, global, global, this, &p.J));
     PERIDOT_PETSC(MatShellSetOperation(p.J, MATOP_MULT, reinterpret_cast<void (*)(void)>(&jacobian_product)));
@@ -422,11 +445,17 @@ void NewtonKrylov::setup() {
   PERIDOT_PETSC(KSPGetPC(ksp, &pc));
   if (preconditioner_ == "gamg") {
     PERIDOT_PETSC(PCSetType(pc, PCGAMG));
-    // SOR smoothing on the levels (GAMG's default, Jacobi under Chebyshev, took 10-20 times the Krylov
-    // iterations on the notched LPS plate), unless PETSC_OPTIONS chooses another.
-    PetscBool chosen = PETSC_FALSE;
-    PERIDOT_PETSC(PetscOptionsHasName(nullptr, nullptr, "-mg_levels_pc_type", &chosen));
-    if (!chosen) PERIDOT_PETSC(PetscOptionsSetValue(nullptr, "-mg_levels_pc_type", "sor"));
+    // SOR smoothing on the finest level (GAMG's default, Jacobi under Chebyshev, took 10-20 times the Krylov
+    // iterations on the notched LPS plate), Jacobi on the others (set_up_preconditioner), unless
+    // PETSC_OPTIONS chooses the smoothers.
+    // (Asked once per process: the option set here would read as the user's in the next equilibrium.)
+    static const bool user_chose = [] {
+      PetscBool chosen = PETSC_FALSE;
+      PERIDOT_PETSC(PetscOptionsHasName(nullptr, nullptr, "-mg_levels_pc_type", &chosen));
+      return chosen == PETSC_TRUE;
+    }();
+    if (!user_chose) PERIDOT_PETSC(PetscOptionsSetValue(nullptr, "-mg_levels_pc_type", "sor"));
+
   } else if (preconditioner_ == "ilu") {
     PERIDOT_PETSC(PCSetType(pc, comm.serial() ? PCILU : PCBJACOBI));
   } else if (preconditioner_ == "jacobi") {
@@ -439,65 +468,20 @@ void NewtonKrylov::setup() {
   PERIDOT_PETSC(SNESSetFromOptions(p.snes));
 }
 
-void NewtonKrylov::set_rigid_body_modes() {
-  // The rigid motions of the deck's dimension (3D: three translations and three rotations; 2D: two and the
-  // rotation in the plane; 1D: the translation), orthonormalised: the near-null space from which GAMG builds
-  // its coarse spaces. Modes that move the inactive out-of-plane dofs would not be near-null there.
-  Petsc& p = *petsc_;
-  const int dimension = sim_.problem().dimension;
-  const std::size_t owned = sim_.num_owned();
-  const double* x = sim_.discretization().x.data();
-  const int count = dimension == 3 ? 6 : dimension == 2 ? 3 : 1;
-  std::vector<Vec> modes(static_cast<std::size_t>(count), nullptr);
-  for (int m = 0; m < count; ++m) {
-    PERIDOT_PETSC(VecDuplicate(p.x, &modes[static_cast<std::size_t>(m)]));
-    PetscScalar* v = nullptr;
-    PERIDOT_PETSC(VecGetArray(modes[static_cast<std::size_t>(m)], &v));
-    for (std::size_t i = 0; i < owned; ++i) {
-      const double* c = x + 3 * i;
-      double* w = v + 3 * i;
-      w[0] = w[1] = w[2] = 0;
-      if (m < dimension) {
-        w[m] = 1;  // translations
-      } else if (m == dimension) {  // rotation about z (the plane's normal in 2D)
-        w[0] = -c[1], w[1] = c[0];
-      } else if (m == 4) {  // about x
-        w[1] = -c[2], w[2] = c[1];
-      } else {  // about y
-        w[0] = c[2], w[2] = -c[0];
-      }
-    }
-    PERIDOT_PETSC(VecRestoreArray(modes[static_cast<std::size_t>(m)], &v));
-    for (int k = 0; k < m; ++k) {  // Gram–Schmidt against the modes before it
-      PetscScalar dot = 0;
-      PERIDOT_PETSC(VecDot(modes[static_cast<std::size_t>(m)], modes[static_cast<std::size_t>(k)], &dot));
-      PERIDOT_PETSC(VecAXPY(modes[static_cast<std::size_t>(m)], -dot, modes[static_cast<std::size_t>(k)]));
-    }
-    PERIDOT_PETSC(VecNormalize(modes[static_cast<std::size_t>(m)], nullptr));
-  }
-  MatNullSpace space = nullptr;
-  PERIDOT_PETSC(MatNullSpaceCreate(p.comm, PETSC_FALSE, count, modes.data(), &space));
-  PERIDOT_PETSC(MatSetNearNullSpace(p.P, space));
-  PERIDOT_PETSC(MatNullSpaceDestroy(&space));
-  for (Vec& v : modes) PERIDOT_PETSC(VecDestroy(&v));
-}
-
 void NewtonKrylov::begin_load_step() { linear_iterations_ = 0; }
 
 void NewtonKrylov::equilibrate() {
   // Fresh PETSc objects for every equilibrium: what they would carry from one to the next (the random vectors
   // of GAMG's and Chebyshev's eigenvalue estimates draw on a generator that advances) would make an
   // equilibrium depend on those before it, and a restart would not give the same bits.
-  petsc_.reset();
-  setup();
-  Petsc& p = *petsc_;
   State& state = sim_.state();
   const Discretization& disc = sim_.discretization();
   const BondList& bonds = sim_.bonds();
   const std::size_t owned = sim_.num_owned();
   force_.assign(3 * owned, 0.0);
   target_ = state.u;
-  // The bonds' springs as they are now (bonds break between equilibria) and each point's diagonal d.
+  // The bonds' springs as they are now (bonds break between equilibria) and each point's diagonal d
+  // (which points are unknowns depends on it: a point without bonds is held).
   bond_stiffness(sim_.model(), bond_k_);
   diagonal_.assign(owned, 0.0);
   for (std::size_t i = 0; i < owned; ++i) {
@@ -505,12 +489,17 @@ void NewtonKrylov::equilibrate() {
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) sum += bond_k_[b];
     diagonal_[i] = sum * disc.volume[i];
   }
+  petsc_.reset();
+  setup();
+  Petsc& p = *petsc_;
   started_ = false;
   newton_residuals_.clear();
   error = nullptr;
   PetscScalar* xa = nullptr;
   PERIDOT_PETSC(VecGetArray(p.x, &xa));
-  std::copy(state.u.data(), state.u.data() + 3 * owned, xa);
+  for (std::size_t m = 0; m < unknown_points_.size(); ++m)
+    for (int c = 0; c < width_; ++c)
+      xa[width_ * m + static_cast<std::size_t>(c)] = state.u.data()[3 * unknown_points_[m] + static_cast<std::size_t>(c)];
   PERIDOT_PETSC(VecRestoreArray(p.x, &xa));
 
   const PetscErrorCode code = SNESSolve(p.snes, nullptr, p.x);
@@ -530,7 +519,7 @@ void NewtonKrylov::equilibrate() {
   // The state is that of the solution (the last evaluation may have been a finite difference's).
   const PetscScalar* solution = nullptr;
   PERIDOT_PETSC(VecGetArrayRead(p.x, &solution));
-  std::vector<double> r(3 * owned);
+  std::vector<double> r(width_ * unknown_points_.size());
   evaluate_residual(solution, r.data(), true);
   PERIDOT_PETSC(VecRestoreArrayRead(p.x, &solution));
   residual_ = recorded_;

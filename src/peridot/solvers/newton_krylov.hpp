@@ -2,16 +2,17 @@
 // The implicit static solver (solver.type: implicit): each equilibrium of the quasi-static load steps
 // (quasi_static.hpp: loads, residual, bond breaking, commits) by Newton's method with a line search, through
 // PETSc (SNES for the nonlinear solve, KSP for the linear one; docs/algorithms.md "Newton–Krylov").
-//   Unknowns: the three displacement components of every owned point, laid out on Peridot's own partition
-//   (rank r owns the rows of its points, in its local order). Residual R = −(f + b + contact) V on the free
-//   dofs (N); on a prescribed dof, and on the out-of-plane dofs of a 2D or 1D deck, R = d (x − ū) with d the
-//   point's diagonal stiffness, so that the Newton update keeps them where the loads put them.
+//   Unknowns: the in-plane displacement components (the deck's dimension) of every owned point with a free
+//   dof, laid out on Peridot's own partition (rank r owns the rows of its points, in its local order); fully
+//   prescribed points are not unknowns. Residual R = −(f + b + contact) V on the free dofs (N); on a
+//   prescribed component of a point that has a free one, R = d (x − ū) with d the point's diagonal stiffness,
+//   so that the Newton update keeps it where the loads put it.
 //   Jacobian: matrix_free (J v = [R(u + h v) − R(u)]/h, h = √ε · max(Δx_min, ‖u‖∞)/‖v‖∞: every model, its
 //   inelastic return map included, since R is the trial state of the step), or bond_tangent, the assembled
 //   pmb-like tangent K (below) itself (a modified Newton method; exact for pmb at small deformation).
 //   Preconditioner: K, the bond springs V_i V_j c G/ξ (internal_force.hpp bond_stiffness) along each intact
-//   bond's deformed direction, 3×3 blocks in a PETSc AIJ matrix of block size 3 with the rigid-body modes
-//   as GAMG's near-null space; algebraic multigrid (gamg), ILU (block Jacobi with ILU per rank when
+//   bond's deformed direction, blocks of the deck's dimension in a PETSc AIJ matrix of that block size (GAMG's
+//   near-null space its translations); algebraic multigrid (gamg), ILU (block Jacobi with ILU per rank when
 //   distributed), Jacobi or none.
 // Convergence is quasi_static.hpp's relative residual (reproducible sums), tested by SNES at each Newton
 // iterate. Bitwise: the residual evaluations are the same bits for any thread count, and PETSc runs one
@@ -53,8 +54,6 @@ class NewtonKrylov final : public QuasiStatic {
   /// Starts PETSc (once per process) and builds the vectors, the matrices and the SNES (afresh for every
   /// equilibrium, so that none depends on those before it: restarts give the same bits).
   void setup();
-  /// The rigid-body modes of the deck's dimension as the preconditioner matrix's near-null space (GAMG).
-  void set_rigid_body_modes();
   std::vector<std::string> solver_history_columns() const override { return {"linear_iterations"}; }
   std::vector<double> solver_history_values() const override {
     return {static_cast<double>(linear_iterations_)};
@@ -91,6 +90,10 @@ class NewtonKrylov final : public QuasiStatic {
   std::vector<double> force_;       ///< per owned dof: the residual force density of the last evaluation
   std::vector<double> diagonal_;    ///< per owned point: d, the diagonal stiffness of K (N/m)
   std::vector<double> bond_k_;      ///< per bond: bond_stiffness
+  /// The owned points with a free dof, in local order: the system's block rows, width_ (the deck's
+  /// dimension) unknowns each; a fully prescribed point is not in the system.
+  std::vector<std::uint32_t> unknown_points_;
+  int width_ = 3;
   VectorField target_;              ///< u where the loads put it (prescribed and inactive dofs)
   std::vector<double> newton_residuals_;
   double start_norm_ = 0, recorded_ = 0, recorded_load_ = 0, length_scale_ = 0;
