@@ -4,7 +4,7 @@ steel bar of nx × n × n points (Δx = 1 mm, δ = 3.015Δx), held over a horizo
 the other end, one load step, both to the same relative force residual. Prints, per solver: wall time, iterations
 (relaxation; Newton and Krylov for implicit), peak resident memory (GNU time), and for implicit the bond tangent's
 bytes per directed bond (its nonzeros as PETSc reports them, 8 B of value and 4 B of column index each); optionally the implicit solver on 1
-and 2 MPI ranks. Example: bench/static_solvers.py --peridot build/peridot --length 200 --width 32 (204 800 points)."""
+and 2 MPI ranks (the threads split among them). Example: bench/static_solvers.py --peridot build/peridot --length 200 --width 32 (204 800 points)."""
 import argparse
 import os
 import re
@@ -57,9 +57,10 @@ def main():
                                           tolerance=a.tolerance, extra=extra))
         out = os.path.join(a.work, name)
         cmd = ["/usr/bin/time", "-f", "peak_rss_kb %M", a.peridot, "run", "-q", "-o", out, deck]
-        if ranks:
-            cmd = ["mpirun", "--oversubscribe", "-np", str(ranks)] + cmd
         run_env = dict(env, PETSC_OPTIONS="-mat_view ::ascii_info") if solver == "implicit" and not ranks else env
+        if ranks:  # the same cores: the threads split among the ranks
+            cmd = ["mpirun", "--oversubscribe", "--bind-to", "none", "-np", str(ranks)] + cmd
+            run_env = dict(env, OMP_NUM_THREADS=str(max(1, int(a.threads) // ranks)))
         start = time.perf_counter()
         r = subprocess.run(cmd, capture_output=True, text=True, env=run_env)
         seconds = time.perf_counter() - start
@@ -73,7 +74,8 @@ def main():
         line = (f"{name}: {seconds:.1f} s, iterations {value('iterations')}"
                 + (f", Krylov {value('linear_iterations')}" if solver == "implicit" else "")
                 + f", residual {float(value('residual')):.2e}, reaction {float(value('reaction_right_x')):.6g} N, "
-                  f"peak RSS {rss / 1024:.0f} MiB" + (" per rank (largest)" if ranks else ""))
+                  f"peak RSS {rss / 1024:.0f} MiB" + (" per rank (largest)" if ranks else "")
+                + (f", {run_env['OMP_NUM_THREADS']} thread(s) per rank" if ranks else ""))
         if solver == "implicit" and not ranks:
             bonds = bond_count(a.peridot, deck, env)
             nonzeros = int(re.search(r"bs=3\s+total: nonzeros=(\d+)", r.stdout).group(1))

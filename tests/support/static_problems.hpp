@@ -19,6 +19,29 @@ namespace peridot::testing {
 
 constexpr double E = 200e9, nu = 0.3, strain = 1e-3;
 
+/// The errors of a deck with an initial velocity (line 9) and a prescribed velocity (line 11), which no static
+/// solver accepts, and the given solver line (line 12); throws if the deck parses.
+inline std::string static_deck_refusal(const std::string& solver_line) {
+  const std::string deck = R"(discretization: {dimension: 2, plane: stress, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  steel: {model: lps, density: 7800, youngs_modulus: 200 GPa, poisson_ratio: 0.3}
+bodies:
+  plate: {material: steel, shape: {box: {min: [0, 0], max: [0.02, 0.01]}}}
+node_sets:
+  left: {shape: {box: {min: [-1, -1], max: [0.002, 1]}}}
+initial_conditions:
+  - {velocity: {x: "1"}}
+boundary_conditions:
+  - {node_set: left, velocity: {x: "0"}}
+)" + solver_line + "\n";
+  try {
+    parse_deck(deck, "deck.yaml", ".");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  throw std::runtime_error("deck accepted:\n" + deck);
+}
+
 /// A bar along x, centred on the origin (n_x × n × n lattice points), gripped over a horizon at each end,
 /// where the classical solution of uniaxial stress is imposed (u_x = ε x, u_y = −ν ε y, u_z = −ν ε z, so
 /// that the grips' extent does not matter), free elsewhere, relaxed in `load_steps` steps.

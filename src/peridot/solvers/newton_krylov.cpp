@@ -134,14 +134,13 @@ PetscErrorCode form_function(SNES, Vec x, Vec r, void* context) {
   });
 }
 
-PetscErrorCode form_jacobian(SNES snes, Vec x, Mat, Mat, void* context) {
+PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
   auto& self = *static_cast<NewtonKrylov*>(context);
   return guarded(self, [&] {
     const PetscScalar* xa = nullptr;
     PERIDOT_PETSC(VecGetArrayRead(x, &xa));
     self.assemble(xa);
     PERIDOT_PETSC(VecRestoreArrayRead(x, &xa));
-    (void)snes;
   });
 }
 
@@ -328,7 +327,7 @@ void NewtonKrylov::multiply(Vec v, Vec y) {
   PERIDOT_PETSC(VecScale(y, 1.0 / h));
 }
 
-bool NewtonKrylov::converged_or_stop(std::int64_t iteration, int& reason) {
+void NewtonKrylov::converged_or_stop(std::int64_t iteration, int& reason) {
   newton_residuals_.push_back(recorded_);
   if (print_iterations_ && sim_.communicator().rank() == 0) {
     PetscInt linear = 0;
@@ -346,7 +345,6 @@ bool NewtonKrylov::converged_or_stop(std::int64_t iteration, int& reason) {
   } else if (iteration >= max_iterations_) {
     reason = SNES_DIVERGED_MAX_IT;
   }
-  return reason != SNES_CONVERGED_ITERATING;
 }
 
 void NewtonKrylov::setup() {
@@ -445,17 +443,11 @@ void NewtonKrylov::setup() {
   PERIDOT_PETSC(KSPGetPC(ksp, &pc));
   if (preconditioner_ == "gamg") {
     PERIDOT_PETSC(PCSetType(pc, PCGAMG));
-    // SOR smoothing on the finest level (GAMG's default, Jacobi under Chebyshev, took 10-20 times the Krylov
-    // iterations on the notched LPS plate), Jacobi on the others (set_up_preconditioner), unless
-    // PETSC_OPTIONS chooses the smoothers.
-    // (Asked once per process: the option set here would read as the user's in the next equilibrium.)
-    static const bool user_chose = [] {
-      PetscBool chosen = PETSC_FALSE;
-      PERIDOT_PETSC(PetscOptionsHasName(nullptr, nullptr, "-mg_levels_pc_type", &chosen));
-      return chosen == PETSC_TRUE;
-    }();
-    if (!user_chose) PERIDOT_PETSC(PetscOptionsSetValue(nullptr, "-mg_levels_pc_type", "sor"));
-
+    // SOR smoothing on the levels (GAMG's default, Jacobi under Chebyshev, took 10-20 times the Krylov
+    // iterations on the notched LPS plate), unless PETSC_OPTIONS chooses the smoothers.
+    PetscBool chosen = PETSC_FALSE;
+    PERIDOT_PETSC(PetscOptionsHasName(nullptr, nullptr, "-mg_levels_pc_type", &chosen));
+    if (!chosen) PERIDOT_PETSC(PetscOptionsSetValue(nullptr, "-mg_levels_pc_type", "sor"));
   } else if (preconditioner_ == "ilu") {
     PERIDOT_PETSC(PCSetType(pc, comm.serial() ? PCILU : PCBJACOBI));
   } else if (preconditioner_ == "jacobi") {

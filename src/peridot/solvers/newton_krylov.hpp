@@ -67,8 +67,9 @@ class NewtonKrylov final : public QuasiStatic {
   void assemble(const double* x);
   /// The iterate's relative residual and whether it is finite (the last recorded residual()).
   double recorded_residual() const { return recorded_; }
-  /// SNES's convergence test at each Newton iterate: reason (a SNESConvergedReason) set; true when it stops.
-  bool converged_or_stop(std::int64_t iteration, int& reason);
+  /// SNES's convergence test at each Newton iterate: sets reason (a SNESConvergedReason; still iterating or why
+  /// it stops).
+  void converged_or_stop(std::int64_t iteration, int& reason);
   /// y = J v by the finite difference of the residual from the base point of the last assemble.
   void multiply(_p_Vec* v, _p_Vec* y);
   std::exception_ptr error;  ///< an exception thrown inside a callback, rethrown after the solve
