@@ -837,6 +837,22 @@ void bond_stiffness(const ModelContext& ctx, std::vector<double>& k) {
         k[b] = neighbor_volume(ctx, i, j, xi) * p.stable_micromodulus * bond_scale(ctx, p, b) / xi;
       }
   });
+  // pmb: its own micromodulus c0 ω(ξ) on the bonds within the block (t_ij + t_ji = c0 ω G e/ξ there).
+  const auto& blocks = ctx.disc->block;
+  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
+    constexpr int Dim = decltype(dim)::value;
+    if constexpr (std::is_same_v<decltype(model), Pmb>) {
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = range.begin; i < range.end; ++i)
+        for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+          const std::uint32_t j = bonds.neighbors[b];
+          if (bonds.broken[b] || blocks[j] != blocks[i]) continue;
+          const double xi = bond_length<Dim>(x, i, j);
+          k[b] = neighbor_volume(ctx, i, j, xi) * mp.micromodulus * influence(p.influence, xi, p.horizon) *
+                 bond_scale(ctx, p, b) / xi;
+        }
+    }
+  });
 }
 
 double stable_time_step(const ModelContext& ctx) {

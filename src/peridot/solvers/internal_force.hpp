@@ -61,9 +61,10 @@ void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u
 /// fictitious density of dynamic relaxation. Ghosts get 0.
 void stiffness_bound(const ModelContext& ctx, std::vector<double>& k);
 
-/// Per bond i → j, the axial spring V_j c G/ξ_ij of the pmb-like tangent (c the block's stable_micromodulus,
-/// G the surface correction's factor), 0 for a broken bond: f_i changes by this times the change of the
-/// bond's length along it, for pmb exactly at small deformation (the implicit solver's preconditioner).
+/// Per bond i → j, the axial spring V_j c G/ξ_ij of the pmb-like tangent (G the surface correction's factor,
+/// V_j with the quadrature's weight), 0 for a broken bond: f_i changes by this times the change of the bond's
+/// length along it. c is a pmb block's own micromodulus c0 ω(ξ) (for a bond within the block, the exact axial
+/// stiffness of the pair of force states), the block's stable_micromodulus for the other models.
 void bond_stiffness(const ModelContext& ctx, std::vector<double>& k);
 
 /// Silling–Askari stable time step min_i √(2ρ_i / Σ_j V_j c/ξ_ij) (s), before any safety factor.

@@ -9,11 +9,12 @@
 //   so that the Newton update keeps it where the loads put it.
 //   Jacobian: matrix_free (J v = [R(u + h v) − R(u)]/h, h = √ε · max(Δx_min, ‖u‖∞)/‖v‖∞: every model, its
 //   inelastic return map included, since R is the trial state of the step), or bond_tangent, the assembled
-//   pmb-like tangent K (below) itself (a modified Newton method; exact for pmb at small deformation).
+//   tangent K (below) itself (exact for pmb; a modified Newton method for the other models).
 //   Preconditioner: K, the bond springs V_i V_j c G/ξ (internal_force.hpp bond_stiffness) along each intact
-//   bond's deformed direction, blocks of the deck's dimension in a PETSc AIJ matrix of that block size (GAMG's
-//   near-null space its translations); algebraic multigrid (gamg), ILU (block Jacobi with ILU per rank when
-//   distributed), Jacobi or none.
+//   bond's deformed direction, plus for pmb the geometric stiffness k (e/|y|)(I − n⊗n) of its turning force;
+//   blocks of the deck's dimension in a PETSc AIJ matrix of that block size (GAMG's near-null space its
+//   translations); algebraic multigrid (gamg), ILU (block Jacobi with ILU per rank when distributed), Jacobi
+//   or none.
 // Convergence is quasi_static.hpp's relative residual (reproducible sums), tested by SNES at each Newton
 // iterate. Bitwise: the residual evaluations are the same bits for any thread count, and PETSc runs one
 // thread per rank, so a deck gives the same bits on any number of threads; across rank counts the Krylov
