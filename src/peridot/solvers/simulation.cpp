@@ -43,6 +43,13 @@ IsotropicQuadrature fit_block_quadrature(const Problem& problem, const BodySpec&
                      fmt::format("isotropic quadrature applies to pmb and the lps models; body '{}' has model {}",
                                  body.name, name));
   }
+  // The fit sums one lattice family, (2δ/Δx + 1)^dimension sites: bounded so that an absurd deck is refused,
+  // not left to run (families this large would not fit in memory as bonds anyway).
+  constexpr double largest_ratio = 64;
+  if (!(body.horizon <= largest_ratio * problem.spacing))
+    throw InputError(problem.quadrature_pos,
+                     fmt::format("isotropic quadrature: body '{}' has δ/Δx = {:.4g}; the fit is made for at most {:g}",
+                                 body.name, body.horizon / problem.spacing, largest_ratio));
   return fit_isotropic_quadrature({.dimension = problem.dimension,
                                    .spacing = problem.spacing,
                                    .horizon = body.horizon,
