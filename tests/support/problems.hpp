@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 // Small problems built in code for the unit and verification tests (no deck file involved).
 #include <cmath>
 #include <string>
@@ -40,6 +41,16 @@ inline SolverSpec solver_spec(const std::string& type = "explicit") {
   spec.type = type;
   spec.parameters = complete_parameters(info->keys, {});
   return spec;
+}
+
+/// Distance from point i to the nearest face of box_problem's box [0, n·Δx]^dim.
+inline double depth(const Discretization& disc, const BlockSetup& s, std::size_t i) {
+  double d = 1e300;
+  for (int k = 0; k < disc.dimension; ++k) {
+    const double x = disc.x(i, k);
+    d = std::min({d, x, s.cells[k] * s.spacing - x});
+  }
+  return d;
 }
 
 /// A box of lattice points [0, n·Δx] with one material, no loads, a handful of steps.

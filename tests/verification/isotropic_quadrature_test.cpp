@@ -116,10 +116,15 @@ Problem quadrature_problem(const BlockSetup& s, bool isotropic) {
   return p;
 }
 
-double depth(const Discretization& disc, const BlockSetup& s, std::size_t i) {
-  double d = 1e300;
-  for (int k = 0; k < disc.dimension; ++k) d = std::min({d, disc.x(i, k), s.cells[k] * s.spacing - disc.x(i, k)});
-  return d;
+/// The largest error(i) over the points deeper than min_depth in the block (there must be some).
+template <class Error>
+double largest_deeper_than(const Discretization& disc, const BlockSetup& s, double min_depth, Error error) {
+  double worst = 0;
+  int points = 0;
+  for (std::size_t i = 0; i < disc.num_points(); ++i)
+    if (testing::depth(disc, s, i) > min_depth) worst = std::max(worst, error(i)), ++points;
+  EXPECT_GT(points, 0);
+  return worst;
 }
 
 // λ and G of the block's classical solid in its idealisation (plane stress: λ′ = 2λG/(λ + 2G)).
@@ -154,12 +159,8 @@ double largest_energy_error(const BlockSetup& s, bool isotropic) {
   compute_dilatation(sim.model(), u, state.dilatation);
   std::vector<double> W;
   compute_strain_energy_density(sim.model(), u, state.dilatation, W);
-  double worst = 0;
-  int points = 0;
-  for (std::size_t i = 0; i < disc.num_points(); ++i)
-    if (depth(disc, s, i) > s.horizon_factor * s.spacing) worst = std::max(worst, std::abs(W[i] / expected - 1)), ++points;
-  EXPECT_GT(points, 0);
-  return worst;
+  return largest_deeper_than(disc, s, s.horizon_factor * s.spacing,
+                             [&](std::size_t i) { return std::abs(W[i] / expected - 1); });
 }
 
 TEST_P(QuadratureBlock, AffineStrainStoresTheClassicalEnergy) {
@@ -205,16 +206,9 @@ double largest_navier_error(const BlockSetup& s, bool isotropic) {
   State& state = sim.state();
   compute_dilatation(sim.model(), u, state.dilatation);
   compute_internal_force(sim.model(), u, state.dilatation, state.force);
-  double worst = 0;
-  int points = 0;
-  for (std::size_t i = 0; i < disc.num_points(); ++i) {
-    if (depth(disc, s, i) <= (2 * s.horizon_factor + 1) * s.spacing) continue;
-    const Vec3 f = state.force.get(i);
-    worst = std::max(worst, norm(f - Vec3{expected[0], expected[1], expected[2]}) / scale);
-    ++points;
-  }
-  EXPECT_GT(points, 0);
-  return worst;
+  const Vec3 navier{expected[0], expected[1], expected[2]};
+  return largest_deeper_than(disc, s, (2 * s.horizon_factor + 1) * s.spacing,
+                             [&](std::size_t i) { return norm(state.force.get(i) - navier) / scale; });
 }
 
 TEST_P(QuadratureBlock, QuadraticFieldGivesTheNavierForce) {

@@ -15,16 +15,7 @@ namespace peridot {
 namespace {
 
 using testing::BlockSetup;
-
-// Distance from point i to the nearest face of the box [0, n·Δx]^dim.
-double depth(const Discretization& disc, const BlockSetup& s, std::size_t i) {
-  double d = 1e300;
-  for (int k = 0; k < disc.dimension; ++k) {
-    const double x = disc.x(i, k);
-    d = std::min({d, x, s.cells[k] * s.spacing - x});
-  }
-  return d;
-}
+using testing::depth;
 
 struct Strain {
   double xx, yy, zz, xy, yz, xz;

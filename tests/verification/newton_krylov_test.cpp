@@ -43,18 +43,19 @@ TEST(NewtonKrylov, BarReachesTheEquilibriumOfDynamicRelaxation) {
             << " iterations; relative difference " << difference << "\n";
 }
 
-TEST(NewtonKrylov, ConvergesQuadratically) {
-  // Stretched by 2 % in one load step, the bar's bonds rotate and stretch enough that the response is
-  // clearly nonlinear; once the iterate is close, each residual is at most a constant times the square of the
-  // one before (the constant measured here is about 3; the finite-difference Jacobian and the linear
-  // tolerance 1e-6 bound the gain per iteration at about 1e-6 too).
-  Problem p = bar_problem(24, 7, 1, "lps", 1, "implicit");
+/// The bar stretched by 2 % in one load step (lateral: the grips' lateral displacement factor), solved to a
+/// relative residual of 1e-12.
+Problem stretched_bar(const std::string& model, const std::string& lateral) {
+  Problem p = bar_problem(24, 7, 1, model, 1, "implicit");
   for (BoundaryConditionSpec& bc : p.boundary_conditions)
-    bc.value.text.replace(0, bc.value.text.find(' '), bc.component == 0 ? "0.02" : "-0.006");
+    bc.value.text.replace(0, bc.value.text.find(' '), bc.component == 0 ? "0.02" : lateral);
   p.solver.parameters.set_number("tolerance", 1e-12);
-  p.solver.parameters.set_number("linear_tolerance", 1e-10);
-  const auto sim = solve(p);
-  const std::vector<double>& r = newton(*sim).newton_residuals();
+  return p;
+}
+
+/// The Newton residuals reach 1e-12 within 6 iterations, and once below 1e-2 each is at most 100 times the
+/// square of the one before (at least once).
+void expect_quadratic(const std::vector<double>& r) {
   ASSERT_GE(r.size(), 3u);
   std::cout << "relative residuals:";
   for (double x : r) std::cout << " " << x;
@@ -68,6 +69,16 @@ TEST(NewtonKrylov, ConvergesQuadratically) {
       ++quadratic;
     }
   EXPECT_GE(quadratic, 1);
+}
+
+TEST(NewtonKrylov, ConvergesQuadratically) {
+  // Stretched by 2 % in one load step, the bar's bonds rotate and stretch enough that the response is
+  // clearly nonlinear; once the iterate is close, each residual is at most a constant times the square of the
+  // one before (the constant measured here is about 3; the finite-difference Jacobian and the linear
+  // tolerance 1e-6 bound the gain per iteration at about 1e-6 too).
+  Problem p = stretched_bar("lps", "-0.006");
+  p.solver.parameters.set_number("linear_tolerance", 1e-10);
+  expect_quadratic(newton(*solve(p)).newton_residuals());
 }
 
 TEST(NewtonKrylov, BondTangentJacobianReachesTheSameEquilibrium) {
@@ -87,26 +98,10 @@ TEST(NewtonKrylov, BondTangentJacobianReachesTheSameEquilibrium) {
 // matrix-free Jacobian; without the geometric part it converged linearly (a factor of about 0.03 per iteration,
 // eight iterations to 4e-14).
 TEST(NewtonKrylov, BondTangentIsPmbsExactJacobian) {
-  Problem p = bar_problem(24, 7, 1, "pmb", 1, "implicit");
-  for (BoundaryConditionSpec& bc : p.boundary_conditions)
-    bc.value.text.replace(0, bc.value.text.find(' '), bc.component == 0 ? "0.02" : "-0.005");
+  Problem p = stretched_bar("pmb", "-0.005");
   p.solver.parameters.set_text("jacobian", "bond_tangent");
-  p.solver.parameters.set_number("tolerance", 1e-12);
   p.solver.parameters.set_number("linear_tolerance", 1e-12);
-  const auto sim = solve(p);
-  const std::vector<double>& r = newton(*sim).newton_residuals();
-  std::cout << "relative residuals:";
-  for (double x : r) std::cout << " " << x;
-  std::cout << "\n";
-  EXPECT_LE(r.back(), 1e-12);
-  EXPECT_LE(r.size(), 7u);
-  int quadratic = 0;
-  for (std::size_t k = 1; k + 1 < r.size(); ++k)
-    if (r[k] < 1e-2 && r[k + 1] > 1e-13) {
-      EXPECT_LT(r[k + 1], 100 * r[k] * r[k]) << "iteration " << k + 1;
-      ++quadratic;
-    }
-  EXPECT_GE(quadratic, 1);
+  expect_quadratic(newton(*solve(p)).newton_residuals());
 }
 
 /// The elastic-plastic notched plate of the relaxation tests (lps_plastic, bonds breaking between equilibria)

@@ -825,33 +825,22 @@ void stiffness_bound(const ModelContext& ctx, std::vector<double>& k) {
 void bond_stiffness(const ModelContext& ctx, std::vector<double>& k) {
   const double* x = ctx.disc->x.data();
   const BondList& bonds = *ctx.bonds;
+  const auto& blocks = ctx.disc->block;
   k.assign(bonds.num_bonds(), 0.0);
   for_each_block_geometry(ctx, [&](auto dim, const MaterialParams& p, BlockRange range) {
     constexpr int Dim = decltype(dim)::value;
+    // pmb: its own micromodulus c0 ω(ξ) on the bonds within the block (t_ij + t_ji = c0 ω G e/ξ there).
+    const bool pmb = is_model<Pmb>(p);
+    const double c0 = pmb ? ctx.model_params_of<Pmb>(static_cast<std::size_t>(blocks[range.begin])).micromodulus : 0.0;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i)
       for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
         if (bonds.broken[b]) continue;
         const std::uint32_t j = bonds.neighbors[b];
         const double xi = bond_length<Dim>(x, i, j);
-        k[b] = neighbor_volume(ctx, i, j, xi) * p.stable_micromodulus * bond_scale(ctx, p, b) / xi;
+        const double c = pmb && blocks[j] == blocks[i] ? c0 * influence(p.influence, xi, p.horizon) : p.stable_micromodulus;
+        k[b] = neighbor_volume(ctx, i, j, xi) * c * bond_scale(ctx, p, b) / xi;
       }
-  });
-  // pmb: its own micromodulus c0 ω(ξ) on the bonds within the block (t_ij + t_ji = c0 ω G e/ξ there).
-  const auto& blocks = ctx.disc->block;
-  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
-    constexpr int Dim = decltype(dim)::value;
-    if constexpr (std::is_same_v<decltype(model), Pmb>) {
-#pragma omp parallel for schedule(static)
-      for (std::size_t i = range.begin; i < range.end; ++i)
-        for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-          const std::uint32_t j = bonds.neighbors[b];
-          if (bonds.broken[b] || blocks[j] != blocks[i]) continue;
-          const double xi = bond_length<Dim>(x, i, j);
-          k[b] = neighbor_volume(ctx, i, j, xi) * mp.micromodulus * influence(p.influence, xi, p.horizon) *
-                 bond_scale(ctx, p, b) / xi;
-        }
-    }
   });
 }
 

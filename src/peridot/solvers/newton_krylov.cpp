@@ -45,7 +45,7 @@ SolverInfo NewtonKrylov::info() {
                                       "tangents: elastic models without contact)",
                        .choices = {"gmres", "cg"}});
   info.keys.push_back({.key = "preconditioner", .type = ValueType::choice, .default_yaml = "gamg",
-                       .description = "of the assembled pmb-like tangent: gamg (PETSc's algebraic multigrid, the "
+                       .description = "of the assembled bond tangent: gamg (PETSc's algebraic multigrid, the "
                                       "translations as its near-null space), ilu (block Jacobi with ILU(0) per "
                                       "rank when distributed), jacobi or none",
                        .choices = {"gamg", "ilu", "jacobi", "none"}});
@@ -186,11 +186,9 @@ void NewtonKrylov::set_displacement(const double* x) {
   double* u = sim_.state().u.data();
   const double* target = target_.data();
   std::copy(target, target + 3 * sim_.num_owned(), u);
-  for (std::size_t m = 0; m < unknown_points_.size(); ++m)
-    for (int c = 0; c < width_; ++c) {
-      const std::size_t k = 3 * unknown_points_[m] + static_cast<std::size_t>(c);
-      if (active(k)) u[k] = x[width_ * m + static_cast<std::size_t>(c)];
-    }
+  for_each_unknown([&](std::size_t row, std::size_t k, std::size_t) {
+    if (active(k)) u[k] = x[row];
+  });
   sim_.exchange_ghosts(sim_.state().u);
 }
 
@@ -199,13 +197,9 @@ void NewtonKrylov::evaluate_residual(const double* x, double* r, bool record) {
   evaluate_residual_force(force_);
   const double* volume = sim_.discretization().volume.data();
   const double* target = target_.data();
-  for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
-    const std::size_t i = unknown_points_[m];
-    for (int c = 0; c < width_; ++c) {
-      const std::size_t k = 3 * i + static_cast<std::size_t>(c), row = width_ * m + static_cast<std::size_t>(c);
-      r[row] = active(k) ? -force_[k] * volume[i] : diagonal_[i] * (x[row] - target[k]);
-    }
-  }
+  for_each_unknown([&](std::size_t row, std::size_t k, std::size_t i) {
+    r[row] = active(k) ? -force_[k] * volume[i] : diagonal_[i] * (x[row] - target[k]);
+  });
   if (!record) return;
   if (!started_) start_norm_ = norm(force_), started_ = true;
   const Residual relative = relative_residual(force_, start_norm_);
@@ -507,9 +501,7 @@ void NewtonKrylov::equilibrate() {
   error = nullptr;
   PetscScalar* xa = nullptr;
   PERIDOT_PETSC(VecGetArray(p.x, &xa));
-  for (std::size_t m = 0; m < unknown_points_.size(); ++m)
-    for (int c = 0; c < width_; ++c)
-      xa[width_ * m + static_cast<std::size_t>(c)] = state.u.data()[3 * unknown_points_[m] + static_cast<std::size_t>(c)];
+  for_each_unknown([&](std::size_t row, std::size_t k, std::size_t) { xa[row] = state.u.data()[k]; });
   PERIDOT_PETSC(VecRestoreArray(p.x, &xa));
 
   const PetscErrorCode code = SNESSolve(p.snes, nullptr, p.x);

@@ -81,6 +81,14 @@ class NewtonKrylov final : public QuasiStatic {
   /// K at the current u into the preconditioner matrix.
   void assemble_bond_tangent();
   bool active(std::size_t k) const;
+  /// f(row, k, i) for every unknown of the system: its row in PETSc's local arrays, k = 3i + component in
+  /// Peridot's, i the point.
+  template <class F>
+  void for_each_unknown(F&& f) const {
+    const auto w = static_cast<std::size_t>(width_);
+    for (std::size_t m = 0; m < unknown_points_.size(); ++m)
+      for (std::size_t c = 0; c < w; ++c) f(w * m + c, 3 * std::size_t{unknown_points_[m]} + c, std::size_t{unknown_points_[m]});
+  }
 
   enum class Jacobian { matrix_free, bond_tangent };
   Jacobian jacobian_;
