@@ -7,7 +7,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libyaml-cpp-dev libeigen3-dev libmuparser-dev libtinyxml2-dev
   libexodusii-dev libnetcdf-dev
-  libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev libpetsc-real-dev
+  libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev libpetsc-real-dev libhwy-dev
   googletest libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev
   pybind11-dev python3-dev
   python3-numpy python3-matplotlib python3-netcdf4 python3-meshio python3-scipy

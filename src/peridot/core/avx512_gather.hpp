@@ -6,16 +6,13 @@
 // Why not gathers: the correspondence bond loops read 6–24 doubles of each partner j, PMB 6. GCC's gathers
 // cost about 0.42 ns per element on the Sapphire Rapids VM of bench/README.md; eight plain loads of each
 // record and a transpose in registers cost 0.24 ns per element (a stand-alone loop of 9-double records).
-// Only built where the compiler targets AVX-512 (-march=native on such a machine); elsewhere the loops stay
-// the compiler's (and -DPERIDOT_NO_AVX512 forces that, to test them).
-#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__) && defined(__AVX512BW__) && \
-    !defined(PERIDOT_NO_AVX512)
-#define PERIDOT_AVX512_GATHER 1
-#include <immintrin.h>
-
-#include <algorithm>
-#include <cstdint>
-#include <vector>
+// Included only in the HWY_AVX3 pass of a file compiled per target with Highway's foreach_target, after
+// HWY_BEFORE_NAMESPACE, so that these functions get AVX-512 code; that file includes <immintrin.h>,
+// <algorithm>, <cstdint> and <vector> at its top, so that the standard library stays compiled for the
+// baseline (an inline function compiled here for AVX-512 could be the copy the linker keeps for all).
+#if HWY_TARGET != HWY_AVX3
+#error "core/avx512_gather.hpp belongs in the HWY_AVX3 pass of a foreach_target file"
+#endif
 
 // GCC 12's intrinsics leave the unused part of an unmasked result "undefined" through a self-initialised
 // variable, which -Wmaybe-uninitialized reports at every use (GCC bug 105593); the code between these
@@ -150,4 +147,3 @@ struct IntactBonds {
 
 }  // namespace peridot::avx512
 PERIDOT_AVX512_END
-#endif

@@ -6,23 +6,27 @@
 #include <cmath>
 #include <numbers>
 
-#include "peridot/core/avx512_gather.hpp"
+#include "peridot/core/simd.hpp"
 #include "peridot/state/bond_runs.hpp"
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>  // before the per-target code below: every header is compiled for the baseline only
+#endif
 
+// The bond loops below are compiled once per SIMD target (core/simd.hpp, solvers/internal_force.cpp says how).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "peridot/correspondence/force.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+#if HWY_TARGET == HWY_AVX3
+#include "peridot/core/avx512_gather.hpp"
+#endif
 namespace peridot::correspondence {
+namespace HWY_NAMESPACE {
 
-double hourglass_stiffness(double coefficient, double bulk_modulus, double horizon) {
-  return 18.0 * coefficient * bulk_modulus / (std::numbers::pi * std::pow(horizon, 4));
-}
-
-double hourglass_damping(double coefficient, double density, double bulk_modulus, double horizon) {
-  return 18.0 * coefficient * std::sqrt(density * bulk_modulus) / (std::numbers::pi * std::pow(horizon, 3));
-}
-
-void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
-                                  const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f) {
-  compute_correspondence_force(ctx, kin, s, u, v, f, BlockRange{0, ctx.disc->num_points()});
-}
+/// The AVX-512 loops read the bond list in place (state/bond_runs.hpp).
+constexpr bool runs_in_place = HWY_TARGET == HWY_AVX3;
 
 namespace {
 
@@ -101,7 +105,7 @@ void run_force(const ForceRun& run_in, std::size_t i, double sum_Ajxi[3], double
   fh[0] += h0, fh[1] += h1, fh[2] += h2;
 }
 
-#if PERIDOT_AVX512_GATHER
+#if HWY_TARGET == HWY_AVX3
 PERIDOT_AVX512_BEGIN
 /// run_force with the partners' records loaded by core/avx512_gather.hpp, 8 bonds per iteration. Each
 /// bond's terms are the same operations in the same order as above (no fused multiply-add, CMakeLists.txt);
@@ -166,7 +170,7 @@ PERIDOT_AVX512_END
 /// The run's force: the AVX-512 loop where the build has it.
 template <bool Hourglass, bool Damping>
 void run_force_sums(const ForceRun& run, std::size_t i, double sum_Ajxi[3], double sum_xi[3], double fh[3]) {
-#if PERIDOT_AVX512_GATHER
+#if HWY_TARGET == HWY_AVX3
   run_force_avx512<Hourglass, Damping>(run, i, sum_Ajxi, sum_xi, fh);
 #else
   run_force<Hourglass, Damping>(run, i, sum_Ajxi, sum_xi, fh);
@@ -175,10 +179,9 @@ void run_force_sums(const ForceRun& run, std::size_t i, double sum_Ajxi[3], doub
 
 }  // namespace
 
-void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
-                                  const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f,
-                                  BlockRange range, VectorField* hourglass_force,
-                                  VectorField* mirror_force) {
+void force_pass(const CorrespondenceContext& ctx, const KinematicFields& kin, const StressFields& s,
+                const VectorField& u, const VectorField& v, VectorField& f, BlockRange range,
+                VectorField* hourglass_force, VectorField* mirror_force) {
   const Discretization& disc = *ctx.disc;
   const BondList& bonds = *ctx.bonds;
   const std::size_t n = disc.num_points();
@@ -251,7 +254,7 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
     // The bonds to the point's own block, vectorised.
     std::uint64_t b_begin, b_end;
     find_same_block_run(bonds, disc.block, i, b_begin, b_end);
-    run.bonds = weighted_run(scratch, bonds, ctx.weighted_volume.data(), b_begin, b_end);
+    run.bonds = weighted_run<runs_in_place>(scratch, bonds, ctx.weighted_volume.data(), b_begin, b_end);
     run.stiffness = ci, run.damping = hi;
     {
       double sum_Ajxi[3] = {0, 0, 0}, sum_xi[3] = {0, 0, 0};
@@ -303,4 +306,35 @@ void compute_correspondence_force(const CorrespondenceContext& ctx, const Kinema
   }
 }
 
+}  // namespace HWY_NAMESPACE
 }  // namespace peridot::correspondence
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace peridot::correspondence {
+
+double hourglass_stiffness(double coefficient, double bulk_modulus, double horizon) {
+  return 18.0 * coefficient * bulk_modulus / (std::numbers::pi * std::pow(horizon, 4));
+}
+
+double hourglass_damping(double coefficient, double density, double bulk_modulus, double horizon) {
+  return 18.0 * coefficient * std::sqrt(density * bulk_modulus) / (std::numbers::pi * std::pow(horizon, 3));
+}
+
+void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
+                                  const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f) {
+  compute_correspondence_force(ctx, kin, s, u, v, f, BlockRange{0, ctx.disc->num_points()});
+}
+
+HWY_EXPORT(force_pass);
+
+void compute_correspondence_force(const CorrespondenceContext& ctx, const KinematicFields& kin,
+                                  const StressFields& s, const VectorField& u, const VectorField& v, VectorField& f,
+                                  BlockRange range, VectorField* hourglass_force,
+                                  VectorField* mirror_force) {
+  simd::apply_environment();
+  HWY_DYNAMIC_DISPATCH(force_pass)(ctx, kin, s, u, v, f, range, hourglass_force, mirror_force);
+}
+
+}  // namespace peridot::correspondence
+#endif  // HWY_ONCE

@@ -8,47 +8,26 @@
 #include <fmt/format.h>
 
 #include "peridot/core/error.hpp"
+#include "peridot/core/simd.hpp"
 #include "peridot/neighbor/influence.hpp"
-#include "peridot/core/avx512_gather.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
 #include "peridot/state/bond_runs.hpp"
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>  // before the per-target code below: every header is compiled for the baseline only
+#endif
 
+// The bond loops below are compiled once per SIMD target (core/simd.hpp, solvers/internal_force.cpp says how).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "peridot/correspondence/kinematics.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+// What the per-target passes share, compiled once (on the first inclusion), for the baseline.
+#ifndef PERIDOT_KINEMATICS_SHARED
+#define PERIDOT_KINEMATICS_SHARED
 namespace peridot::correspondence {
-
-CorrespondenceContext make_correspondence_context(const Discretization& disc, const BondList& bonds,
-                                                  const std::vector<BlockGeometry>& blocks,
-                                                  double partial_volume_radius) {
-  PERIDOT_REQUIRE(disc.dimension == 3, "the correspondence model is implemented in 3D only");
-  const std::size_t n = disc.num_points();
-  PERIDOT_REQUIRE(bonds.offsets.size() == n + 1, "bond list does not match the discretization");
-  CorrespondenceContext ctx;
-  ctx.disc = &disc;
-  ctx.bonds = &bonds;
-  ctx.blocks = blocks;
-  ctx.partial_volume_radius = partial_volume_radius;
-  ctx.weighted_volume.resize(bonds.num_bonds());
-  ctx.hourglass_stiffness.assign(blocks.size(), 0.0);
-  ctx.hourglass_damping.assign(blocks.size(), 0.0);
-  ctx.bulk_viscosity_linear.assign(blocks.size(), 0.0);
-  ctx.bulk_viscosity_quadratic.assign(blocks.size(), 0.0);
-  const auto& x = disc.x;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-      const std::uint32_t j = bonds.neighbors[b];
-      const double xi = norm(x.get(j) - x.get(i));
-      ctx.weighted_volume[b] = pair_weight(ctx, disc.block[i], disc.block[j], xi) * disc.volume[j];
-    }
-  return ctx;
-}
-
-double pair_weight(const CorrespondenceContext& ctx, std::size_t own, std::size_t other, double xi) {
-  const BlockGeometry& g = ctx.blocks[own];
-  return influence(g.influence, xi, g.horizon) *
-         partial_volume_factor(xi, std::max(g.horizon, ctx.blocks[other].horizon), ctx.partial_volume_radius);
-}
-
 namespace {
+
 
 [[noreturn]] void throw_singular_shape_tensor(const CorrespondenceContext& ctx, std::size_t i, const Mat3& K) {
   const Discretization& disc = *ctx.disc;
@@ -101,6 +80,22 @@ Mat3 shape_tensor_of(const CorrespondenceContext& ctx, std::size_t i) {
   return K;
 }
 
+}  // namespace
+}  // namespace peridot::correspondence
+#endif  // PERIDOT_KINEMATICS_SHARED
+
+HWY_BEFORE_NAMESPACE();
+#if HWY_TARGET == HWY_AVX3
+#include "peridot/core/avx512_gather.hpp"
+#endif
+namespace peridot::correspondence {
+namespace HWY_NAMESPACE {
+
+/// The AVX-512 loops read the bond list in place (state/bond_runs.hpp).
+constexpr bool runs_in_place = HWY_TARGET == HWY_AVX3;
+
+namespace {
+
 /// What the vectorised kinematics loop reads, by value (private copies: state/bond_runs.hpp says why).
 struct KinematicsRun {
   const double* x;
@@ -146,7 +141,7 @@ struct KinematicsRun {
   for (int c = 0; c < 9; ++c) H[c] += h_run[c], Ndot[c] += n_run[c];
 }
 
-#if PERIDOT_AVX512_GATHER
+#if HWY_TARGET == HWY_AVX3
 PERIDOT_AVX512_BEGIN
 /// run_kinematics with the partners' records loaded by core/avx512_gather.hpp, 8 bonds per iteration;
 /// each bond's terms are the same operations as above, only the order of the sums over bonds differs.
@@ -182,7 +177,7 @@ PERIDOT_AVX512_END
 
 /// The run's sums: the AVX-512 loop where the build has it.
 inline void run_kinematics_sums(const KinematicsRun& run, std::size_t i, double K[6], double H[9], double Ndot[9]) {
-#if PERIDOT_AVX512_GATHER
+#if HWY_TARGET == HWY_AVX3
   run_kinematics_avx512(run, i, K, H, Ndot);
 #else
   run_kinematics(run, i, K, H, Ndot);
@@ -191,13 +186,8 @@ inline void run_kinematics_sums(const KinematicsRun& run, std::size_t i, double 
 
 }  // namespace
 
-void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
-                        KinematicFields& out) {
-  compute_kinematics(ctx, u, v, out, BlockRange{0, ctx.disc->num_points()});
-}
-
-void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
-                        KinematicFields& out, BlockRange range) {
+void kinematics_pass(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v, KinematicFields& out,
+                     BlockRange range) {
   const Discretization& disc = *ctx.disc;
   const BondList& bonds = *ctx.bonds;
   const std::size_t n = disc.num_points();
@@ -230,7 +220,7 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
       double K[6] = {}, H[9] = {}, Ndot[9] = {};
       std::uint64_t b_begin, b_end;
       find_same_block_run(bonds, disc.block, i, b_begin, b_end);
-      run.bonds = weighted_run(scratch, bonds, ctx.weighted_volume.data(), b_begin, b_end);
+      run.bonds = weighted_run<runs_in_place>(scratch, bonds, ctx.weighted_volume.data(), b_begin, b_end);
       run_kinematics_sums(run, i, K, H, Ndot);
       // Bonds to other correspondence blocks and to mirror images, one at a time: weight w (ω V_j), reference
       // offset ξ, relative displacement and velocity.
@@ -277,6 +267,59 @@ void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, 
     throw_singular_shape_tensor(ctx, first_bad, shape_tensor_of(ctx, first_bad));
 }
 
+}  // namespace HWY_NAMESPACE
+}  // namespace peridot::correspondence
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace peridot::correspondence {
+
+CorrespondenceContext make_correspondence_context(const Discretization& disc, const BondList& bonds,
+                                                  const std::vector<BlockGeometry>& blocks,
+                                                  double partial_volume_radius) {
+  PERIDOT_REQUIRE(disc.dimension == 3, "the correspondence model is implemented in 3D only");
+  const std::size_t n = disc.num_points();
+  PERIDOT_REQUIRE(bonds.offsets.size() == n + 1, "bond list does not match the discretization");
+  CorrespondenceContext ctx;
+  ctx.disc = &disc;
+  ctx.bonds = &bonds;
+  ctx.blocks = blocks;
+  ctx.partial_volume_radius = partial_volume_radius;
+  ctx.weighted_volume.resize(bonds.num_bonds());
+  ctx.hourglass_stiffness.assign(blocks.size(), 0.0);
+  ctx.hourglass_damping.assign(blocks.size(), 0.0);
+  ctx.bulk_viscosity_linear.assign(blocks.size(), 0.0);
+  ctx.bulk_viscosity_quadratic.assign(blocks.size(), 0.0);
+  const auto& x = disc.x;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+      const std::uint32_t j = bonds.neighbors[b];
+      const double xi = norm(x.get(j) - x.get(i));
+      ctx.weighted_volume[b] = pair_weight(ctx, disc.block[i], disc.block[j], xi) * disc.volume[j];
+    }
+  return ctx;
+}
+
+double pair_weight(const CorrespondenceContext& ctx, std::size_t own, std::size_t other, double xi) {
+  const BlockGeometry& g = ctx.blocks[own];
+  return influence(g.influence, xi, g.horizon) *
+         partial_volume_factor(xi, std::max(g.horizon, ctx.blocks[other].horizon), ctx.partial_volume_radius);
+}
+
+void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
+                        KinematicFields& out) {
+  compute_kinematics(ctx, u, v, out, BlockRange{0, ctx.disc->num_points()});
+}
+
+HWY_EXPORT(kinematics_pass);
+
+void compute_kinematics(const CorrespondenceContext& ctx, const VectorField& u, const VectorField& v,
+                        KinematicFields& out, BlockRange range) {
+  simd::apply_environment();
+  HWY_DYNAMIC_DISPATCH(kinematics_pass)(ctx, u, v, out, range);
+}
+
 bool shape_tensor_well_conditioned(const CorrespondenceContext& ctx, std::size_t i) {
   return well_conditioned(shape_tensor_of(ctx, i), ctx.min_reciprocal_condition);
 }
@@ -287,3 +330,4 @@ Mat3 mid_step_velocity_gradient(const Mat3& F_end, const Mat3& F_rate, double dt
 }
 
 }  // namespace peridot::correspondence
+#endif  // HWY_ONCE

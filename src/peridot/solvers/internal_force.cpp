@@ -7,65 +7,28 @@
 #include <limits>
 #include <type_traits>
 
-#include "peridot/core/avx512_gather.hpp"
 #include "peridot/core/error.hpp"
 #include "peridot/damage/critical_stretch.hpp"
 #include "peridot/materials/bond_loop.hpp"
+#include "peridot/core/simd.hpp"
 #include "peridot/state/bond_runs.hpp"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>  // before the per-target code below: every header is compiled for the baseline only
+#endif
+
+// The dilatation and force passes are compiled once per SIMD target (core/simd.hpp): Highway's
+// foreach_target includes this file again for each, with HWY_TARGET set and that target's instruction
+// set enabled between HWY_BEFORE_NAMESPACE and HWY_AFTER_NAMESPACE. Everything else is compiled once.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "peridot/solvers/internal_force.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+// What the per-target passes share, compiled once (on the first inclusion), for the baseline.
+#ifndef PERIDOT_INTERNAL_FORCE_SHARED
+#define PERIDOT_INTERNAL_FORCE_SHARED
 namespace peridot {
-
-void calibrate_models(ModelContext& ctx) {
-  ctx.point_constants.assign(static_cast<std::size_t>(ctx.point_constant_arrays()),
-                             std::vector<double>(ctx.disc->num_points(), 0.0));
-  for (std::size_t b = 0; b < ctx.ranges.size(); ++b)
-    if (ctx.ranges[b].begin < ctx.ranges[b].end)
-      with_model(ctx.params[b].model, [&](auto model) {
-        using Model = decltype(model);
-        Model::calibrate(ctx, ctx.params[b], ctx.model_params_of<Model>(b), ctx.ranges[b]);
-      });
-  // Ghosts carry their block too, and a bond loop reads their volumes: all points count.
-  const Discretization& disc = *ctx.disc;
-  constexpr double unset = -1;
-  ctx.uniform_volume.assign(ctx.params.size(), unset);
-  for (std::size_t i = 0; i < disc.num_points(); ++i) {
-    double& v = ctx.uniform_volume[static_cast<std::size_t>(disc.block[i])];
-    if (v == unset) v = disc.volume[i];
-    else if (v != disc.volume[i]) v = 0;
-  }
-  for (double& v : ctx.uniform_volume) v = std::max(v, 0.0);  // a block without points: gather (never read)
-  // A family's blocks rise along its bonds (find_same_block_run): its first and last bonds tell.
-  const BondList& bonds = *ctx.bonds;
-  ctx.family_in_block.assign(ctx.params.size(), 1);
-  for (std::size_t b = 0; b < ctx.ranges.size(); ++b)
-    for (std::size_t i = ctx.ranges[b].begin; i < ctx.ranges[b].end; ++i) {
-      const std::uint64_t first = bonds.offsets[i], end = bonds.offsets[i + 1];
-      if (first < end && (disc.block[bonds.neighbors[first]] != disc.block[i] ||
-                          disc.block[bonds.neighbors[end - 1]] != disc.block[i])) {
-        ctx.family_in_block[b] = 0;
-        break;
-      }
-    }
-}
-
-KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& theta, const MaterialHistory* history) {
-  KernelFields s;
-  s.theta = theta.data();
-  s.inverse_m = ctx.inverse_weighted_volume.data();
-  if (!ctx.thermal_stretch.empty()) s.thermal_stretch = ctx.thermal_stretch.data();
-  if (!ctx.bond_scale.empty()) s.bond_scale = ctx.bond_scale.data();
-  if (history) {
-    for (std::size_t k = 0; k < history->point.size(); ++k) s.point[k] = history->point[k].data();
-    for (std::size_t k = 0; k < history->bond.size() && k < kernel_bond_arrays; ++k)
-      s.bond[k] = history->bond[k].empty() ? nullptr : history->bond[k].data();
-    s.history = history;
-  }
-  for (std::size_t k = 0; k < ctx.point_constants.size() && k < kernel_point_constant_arrays; ++k)
-    s.point_constant[k] = ctx.point_constants[k].data();
-  PERIDOT_REQUIRE(ctx.bond_history_arrays() == 0 || s.bond[0], "an inelastic model needs the material history");
-  PERIDOT_REQUIRE(ctx.point_arrays() == 0 || s.point[0], "a model with point arrays needs the material history");
-  return s;
-}
 
 using namespace bond_loop;
 
@@ -132,25 +95,19 @@ inline double pair_critical_stretch(const ModelContext& ctx, const MaterialParam
 
 }  // namespace
 
-void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
-  const std::size_t n = ctx.disc->num_points();
-  m.assign(n, 0.0);
-  const double* x = ctx.disc->x.data();
-  const BondList& bonds = *ctx.bonds;
-  for_each_block_geometry(ctx, [&](auto dim, const MaterialParams& p, BlockRange range) {
-    constexpr int Dim = decltype(dim)::value;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = range.begin; i < range.end; ++i) {
-      double sum = 0;
-      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
-        const std::uint32_t j = bonds.neighbors[b];
-        const double xi = bond_length<Dim>(x, i, j);
-        sum += influence(p.influence, xi, p.horizon) * xi * xi * neighbor_volume(ctx, i, j, xi);
-      }
-      m[i] = sum;
-    }
-  });
-}
+}  // namespace peridot
+#endif  // PERIDOT_INTERNAL_FORCE_SHARED
+
+HWY_BEFORE_NAMESPACE();
+#if HWY_TARGET == HWY_AVX3
+#if defined(__GNUC__) && !defined(__clang__)
+// 512-bit vectors for GCC's own vectorised loops too: their mask conversions fail at 256 bits.
+#pragma GCC target("prefer-vector-width=512")
+#endif
+#include "peridot/core/avx512_gather.hpp"
+#endif
+namespace peridot {
+namespace HWY_NAMESPACE {
 
 namespace {
 
@@ -302,13 +259,13 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
 }
 
 /// One thread's list of intact bonds for the AVX-512 loops (nothing without them).
-#if PERIDOT_AVX512_GATHER
+#if HWY_TARGET == HWY_AVX3
 using IntactScratch = avx512::IntactBonds;
 #else
 struct IntactScratch {};
 #endif
 
-#if PERIDOT_AVX512_GATHER
+#if HWY_TARGET == HWY_AVX3
 PERIDOT_AVX512_BEGIN
 // The AVX-512 loops of 3D PMB and LPS (constant or 1/|ξ| influence): the partners' x and u loaded by
 // core/avx512_gather.hpp (transposes, not gathers), the lengths from reciprocal_sqrt (no square root or
@@ -547,7 +504,7 @@ template <int Dim, class Model>
 bool force_in_place(const SameBlockRun& run, const MaterialParams& p, const typename Model::Params& mp,
                     const KernelFields& s, std::size_t i, const std::uint32_t* neighbors, std::uint8_t* broken,
                     IntactScratch& scratch, double f[3]) {
-#if PERIDOT_AVX512_GATHER
+#if HWY_TARGET == HWY_AVX3
   if constexpr (Dim == 3 && (std::is_same_v<Model, Pmb> || std::is_same_v<Model, Lps>)) {
     return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
       const IntactRun bonds(run, neighbors, broken, scratch);
@@ -568,7 +525,7 @@ template <int Dim, class Model>
 bool dilatation_in_place(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
                          const std::uint32_t* neighbors, std::uint8_t* broken, IntactScratch& scratch, double& sum,
                          double& lost) {
-#if PERIDOT_AVX512_GATHER
+#if HWY_TARGET == HWY_AVX3
   if constexpr (Dim == 3 && std::is_same_v<Model, Lps>) {
     if (failure_check(run) == FailureCheck::after_force) return false;  // never: this pass checks before the force
     return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
@@ -584,8 +541,8 @@ bool dilatation_in_place(const SameBlockRun& run, const MaterialParams& p, std::
 
 }  // namespace
 
-void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
-                        MaterialHistory* history) {
+void dilatation_pass(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
+                     MaterialHistory* history) {
   const BondFailure failure(ctx);
   const std::vector<double>& inverse_m = ctx.inverse_weighted_volume;
   const double* x = ctx.disc->x.data();
@@ -666,28 +623,8 @@ void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vect
   });
 }
 
-void start_step(const ModelContext& ctx, MaterialHistory& history, double dt) {
-  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
-    model.start_step(ctx, history, p, mp, range, dt);
-  });
-}
-
-void prepare_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                     MaterialHistory& history) {
-  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
-    model.prepare(ctx, u, theta, history, p, mp, range);
-  });
-}
-
-void commit_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                    MaterialHistory& history, double dt) {
-  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
-    model.commit(ctx, u, theta, history, p, mp, range, dt);
-  });
-}
-
-void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
-                            VectorField& f, bool fail_bonds, const MaterialHistory* history) {
+void force_pass(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta, VectorField& f,
+                bool fail_bonds, const MaterialHistory* history) {
   const BondFailure failure(ctx);
   const KernelFields fields = kernel_fields(ctx, theta, history);
   const double* x = ctx.disc->x.data();
@@ -776,6 +713,120 @@ void compute_internal_force(const ModelContext& ctx, const VectorField& u, const
       }
     }
   });
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace peridot
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace peridot {
+
+void calibrate_models(ModelContext& ctx) {
+  ctx.point_constants.assign(static_cast<std::size_t>(ctx.point_constant_arrays()),
+                             std::vector<double>(ctx.disc->num_points(), 0.0));
+  for (std::size_t b = 0; b < ctx.ranges.size(); ++b)
+    if (ctx.ranges[b].begin < ctx.ranges[b].end)
+      with_model(ctx.params[b].model, [&](auto model) {
+        using Model = decltype(model);
+        Model::calibrate(ctx, ctx.params[b], ctx.model_params_of<Model>(b), ctx.ranges[b]);
+      });
+  // Ghosts carry their block too, and a bond loop reads their volumes: all points count.
+  const Discretization& disc = *ctx.disc;
+  constexpr double unset = -1;
+  ctx.uniform_volume.assign(ctx.params.size(), unset);
+  for (std::size_t i = 0; i < disc.num_points(); ++i) {
+    double& v = ctx.uniform_volume[static_cast<std::size_t>(disc.block[i])];
+    if (v == unset) v = disc.volume[i];
+    else if (v != disc.volume[i]) v = 0;
+  }
+  for (double& v : ctx.uniform_volume) v = std::max(v, 0.0);  // a block without points: gather (never read)
+  // A family's blocks rise along its bonds (find_same_block_run): its first and last bonds tell.
+  const BondList& bonds = *ctx.bonds;
+  ctx.family_in_block.assign(ctx.params.size(), 1);
+  for (std::size_t b = 0; b < ctx.ranges.size(); ++b)
+    for (std::size_t i = ctx.ranges[b].begin; i < ctx.ranges[b].end; ++i) {
+      const std::uint64_t first = bonds.offsets[i], end = bonds.offsets[i + 1];
+      if (first < end && (disc.block[bonds.neighbors[first]] != disc.block[i] ||
+                          disc.block[bonds.neighbors[end - 1]] != disc.block[i])) {
+        ctx.family_in_block[b] = 0;
+        break;
+      }
+    }
+}
+
+KernelFields kernel_fields(const ModelContext& ctx, const std::vector<double>& theta, const MaterialHistory* history) {
+  KernelFields s;
+  s.theta = theta.data();
+  s.inverse_m = ctx.inverse_weighted_volume.data();
+  if (!ctx.thermal_stretch.empty()) s.thermal_stretch = ctx.thermal_stretch.data();
+  if (!ctx.bond_scale.empty()) s.bond_scale = ctx.bond_scale.data();
+  if (history) {
+    for (std::size_t k = 0; k < history->point.size(); ++k) s.point[k] = history->point[k].data();
+    for (std::size_t k = 0; k < history->bond.size() && k < kernel_bond_arrays; ++k)
+      s.bond[k] = history->bond[k].empty() ? nullptr : history->bond[k].data();
+    s.history = history;
+  }
+  for (std::size_t k = 0; k < ctx.point_constants.size() && k < kernel_point_constant_arrays; ++k)
+    s.point_constant[k] = ctx.point_constants[k].data();
+  PERIDOT_REQUIRE(ctx.bond_history_arrays() == 0 || s.bond[0], "an inelastic model needs the material history");
+  PERIDOT_REQUIRE(ctx.point_arrays() == 0 || s.point[0], "a model with point arrays needs the material history");
+  return s;
+}
+
+void compute_weighted_volume(const ModelContext& ctx, std::vector<double>& m) {
+  const std::size_t n = ctx.disc->num_points();
+  m.assign(n, 0.0);
+  const double* x = ctx.disc->x.data();
+  const BondList& bonds = *ctx.bonds;
+  for_each_block_geometry(ctx, [&](auto dim, const MaterialParams& p, BlockRange range) {
+    constexpr int Dim = decltype(dim)::value;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      double sum = 0;
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
+        const std::uint32_t j = bonds.neighbors[b];
+        const double xi = bond_length<Dim>(x, i, j);
+        sum += influence(p.influence, xi, p.horizon) * xi * xi * neighbor_volume(ctx, i, j, xi);
+      }
+      m[i] = sum;
+    }
+  });
+}
+
+HWY_EXPORT(dilatation_pass);
+HWY_EXPORT(force_pass);
+
+void compute_dilatation(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
+                        MaterialHistory* history) {
+  simd::apply_environment();
+  HWY_DYNAMIC_DISPATCH(dilatation_pass)(ctx, u, theta, fail_bonds, history);
+}
+
+void start_step(const ModelContext& ctx, MaterialHistory& history, double dt) {
+  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
+    model.start_step(ctx, history, p, mp, range, dt);
+  });
+}
+
+void prepare_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                     MaterialHistory& history) {
+  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
+    model.prepare(ctx, u, theta, history, p, mp, range);
+  });
+}
+
+void commit_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                    MaterialHistory& history, double dt) {
+  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
+    model.commit(ctx, u, theta, history, p, mp, range, dt);
+  });
+}
+
+void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                            VectorField& f, bool fail_bonds, const MaterialHistory* history) {
+  simd::apply_environment();
+  HWY_DYNAMIC_DISPATCH(force_pass)(ctx, u, theta, f, fail_bonds, history);
 }
 
 void compute_strain_energy_density(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
@@ -876,3 +927,4 @@ double stable_time_step(const ModelContext& ctx) {
 }
 
 }  // namespace peridot
+#endif  // HWY_ONCE

@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "peridot/core/avx512_gather.hpp"
 #include "peridot/state/fields.hpp"
 
 namespace peridot {
@@ -78,16 +77,18 @@ struct WeightedRun {
   std::uint64_t count = 0;
 };
 
-/// The WeightedRun of the bonds [b_begin, b_end) of `bonds` with the per-bond weights `weight`.
-inline WeightedRun weighted_run(RunScratch& scratch, const BondList& bonds, const double* weight,
-                                std::uint64_t b_begin, std::uint64_t b_end) {
-#if PERIDOT_AVX512_GATHER
-  (void)scratch;
-  return {bonds.neighbors.data() + b_begin, bonds.broken.data() + b_begin, weight + b_begin, b_end - b_begin};
-#else
-  scratch.load(bonds.neighbors.data(), bonds.broken.data(), b_begin, b_end, weight);
-  return {scratch.neighbor.data(), nullptr, scratch.intact.data(), padded_length(b_end - b_begin)};
-#endif
+/// The WeightedRun of the bonds [b_begin, b_end) of `bonds` with the per-bond weights `weight`: in place
+/// (InPlace, the AVX-512 loops) or copied to `scratch`.
+template <bool InPlace>
+WeightedRun weighted_run(RunScratch& scratch, const BondList& bonds, const double* weight, std::uint64_t b_begin,
+                         std::uint64_t b_end) {
+  if constexpr (InPlace) {
+    (void)scratch;
+    return {bonds.neighbors.data() + b_begin, bonds.broken.data() + b_begin, weight + b_begin, b_end - b_begin};
+  } else {
+    scratch.load(bonds.neighbors.data(), bonds.broken.data(), b_begin, b_end, weight);
+    return {scratch.neighbor.data(), nullptr, scratch.intact.data(), padded_length(b_end - b_begin)};
+  }
 }
 
 }  // namespace peridot
