@@ -13,7 +13,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 
+#include "peridot/core/simd.hpp"
 #include "peridot/deck/deck.hpp"
 #include "peridot/deck/model_schema.hpp"
 #include "peridot/deck/peridigm_import.hpp"
@@ -118,9 +120,18 @@ int main(int argc, char** argv) {
   // Several ranks on one machine share its cores: one thread per rank unless told otherwise.
   else if (!peridot::Communicator::world().serial() && !std::getenv("OMP_NUM_THREADS")) omp_set_num_threads(1);
 
+  // PERIDOT_SIMD (core/simd.hpp) is checked before anything runs: a target this CPU lacks is a usage error.
+  try {
+    peridot::simd::apply_environment();
+  } catch (const std::invalid_argument& e) {
+    if (root) std::cerr << "error: " << e.what() << '\n';
+    return exit_input_error;
+  }
+
   try {
     if (info->parsed()) {
       if (!root) return 0;
+      if (model.empty() && !markdown) std::cout << "SIMD target of the bond loops: " << peridot::simd::describe() << "\n\n";
       if (model.empty()) peridot::print_schema(std::cout, markdown);
       else peridot::print_model_page(std::cout, *peridot::find_model(model), markdown);
       return 0;

@@ -10,6 +10,12 @@ cmake --build build
 # passive waiting keeps OpenMP from spinning against the other test on a 2-core machine.
 export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 ctest --test-dir build --output-on-failure -j 2 "$@"
+# The suite above runs the best SIMD target of this CPU (core/simd.hpp); the bond-loop tests run once more
+# with the x86 baseline forced (SimdTargets compares every target on every model).
+if [ "$(uname -m)" = x86_64 ]; then
+  PERIDOT_SIMD=sse4 ./build/tests/peridot_tests --gtest_brief=1 \
+    --gtest_filter='ModelInvariants*:LpsBondLoops*:BondFailureInForcePass*:UniformVolume*:Corr*:ThreadDeterminism*'
+fi
 # Then the deck fuzzer for a minute and the mesh fuzzer for half a minute: any deck or Gmsh/Abaqus file that
 # crashes the loader, the set-up or a mesh reader fails the run.
 bash scripts/fuzz.sh 60

@@ -15,6 +15,7 @@
 #include <fmt/ranges.h>
 
 #include "peridot/deck/deck.hpp"
+#include "peridot/core/simd.hpp"
 #include "peridot/materials/models.hpp"
 #include "peridot/output/csv_writer.hpp"
 #include "peridot/output/exodus_writer.hpp"
@@ -67,6 +68,7 @@ std::string describe_setup(const Simulation& sim) {
                      : disc.dimension == 1 ? fmt::format(" (a bar of area {:g} m²)", problem.area)
                                            : std::string());
   out << fmt::format("points           {}\n", disc.num_points());
+  out << fmt::format("bond loops       {}\n", simd::describe());
   for (std::size_t b = 0; b < disc.block_names.size(); ++b) {
     const BlockRange r = ranges[b];
     const MaterialParams& p = sim.model().params[b];
