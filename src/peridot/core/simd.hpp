@@ -10,7 +10,7 @@
 namespace peridot::simd {
 
 /// The targets compiled into this binary that this CPU can run, best first: on x86 "avx512", "avx2",
-/// "sse4" (the baseline); on Arm "sve2", "sve", "neon" as built.
+/// "sse4" (the baseline), "scalar" (Highway's fallback, no vectors); on Arm "sve2", "sve", "neon" as built.
 const std::vector<std::string>& available_targets();
 
 /// The target the bond loops use now (PERIDOT_SIMD's, once read, or the best available).
