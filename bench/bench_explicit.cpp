@@ -13,6 +13,8 @@
 //                                              (Foster's J2 law, n = 13.5, m = 44, with the block's E and ν;
 //                                              C_HG = 0.05; σ_y = 1e4 Pa makes the points flow at the default
 //                                              v0: a Brent solve per point and step)
+//   --dim 2                  plane stress, thickness Δx, NX·NY points (NZ ignored): 28 bonds per interior point
+//   --influence constant|inverse_distance|gaussian   (default: constant for pmb, 1/|ξ| otherwise, as LAMMPS)
 //   --lammps-failure-order   a bond failing in a step still carries that step's force, as in LAMMPS PERI
 //   --contact                short-range contact on (contact: {} in a deck): its cost when nothing touches
 //   mpirun -np R bench_explicit …   distributed: rates per core over all R × threads cores, the slowest
@@ -50,6 +52,8 @@ struct Options {
   double critical_stretch = 0;  // 0: no damage
   double yield_stress = 250e6;  // lps_plastic, correspondence j2
   std::string law = "j2";       // correspondence
+  int dimension = 3;            // 2: plane stress, thickness Δx, the first two of --n
+  std::string influence;        // empty: as LAMMPS (constant for pmb, 1/|ξ| otherwise)
   int threads = 1;
   bool lammps_failure_order = false;
   bool contact = false;
@@ -70,6 +74,8 @@ Options parse(int argc, char** argv) {
     else if (a == "--critical-stretch") o.critical_stretch = std::stod(next());
     else if (a == "--yield-stress") o.yield_stress = std::stod(next());
     else if (a == "--law") o.law = next();
+    else if (a == "--dim") o.dimension = std::stoi(next());
+    else if (a == "--influence") o.influence = next();
     else if (a == "--lammps-failure-order") o.lammps_failure_order = true;
     else if (a == "--contact") o.contact = true;
     else if (a == "--threads") o.threads = std::stoi(next());
@@ -88,7 +94,8 @@ Options parse(int argc, char** argv) {
 Problem benchmark_problem(const Options& o) {
   Problem p;
   p.deck_path = "<bench>";
-  p.dimension = 3;
+  p.dimension = o.dimension;
+  if (o.dimension == 2) p.plane = PlaneKind::stress, p.thickness = o.spacing;
   p.spacing = o.spacing;
   p.lattice_origin = {-0.5 * o.spacing, -0.5 * o.spacing, -0.5 * o.spacing};
   p.partial_volume = PartialVolumeKind::horizon;  // LAMMPS PERI scales V_j this way
@@ -102,6 +109,8 @@ Problem benchmark_problem(const Options& o) {
     q.set_text("constitutive_law", j2 ? "j2_viscoplastic" : "hypoelastic");
     q.set_number("hourglass_coefficient", 0.05);
     q.set_number("hourglass_viscosity", 0);
+    q.set_number("bulk_viscosity_linear", 0);
+    q.set_number("bulk_viscosity_quadratic", 0);
     if (j2) {
       q.set_number("yield_stress", o.yield_stress);
       q.set_number("hardening_exponent", 13.5);
@@ -117,6 +126,13 @@ Problem benchmark_problem(const Options& o) {
   }
   // LAMMPS peri/lps weighs bonds by 1/|ξ| (the scale of ω cancels in LPS, so δ/|ξ| is the same model).
   m.influence = m.model == "pmb" ? InfluenceKind::constant : InfluenceKind::inverse_distance;
+  if (o.influence == "constant") m.influence = InfluenceKind::constant;
+  else if (o.influence == "inverse_distance") m.influence = InfluenceKind::inverse_distance;
+  else if (o.influence == "gaussian") m.influence = InfluenceKind::gaussian;
+  else if (!o.influence.empty()) {
+    std::fprintf(stderr, "unknown influence %s\n", o.influence.c_str());
+    std::exit(2);
+  }
   m.density = 7800;
   m.elastic = {K, G, E, nu};
   if (o.critical_stretch > 0) {
@@ -132,6 +148,7 @@ Problem benchmark_problem(const Options& o) {
   box.kind = Shape::Kind::box;
   box.lo = {-0.5 * o.spacing, -0.5 * o.spacing, -0.5 * o.spacing};
   box.hi = {(o.n[0] - 0.5) * o.spacing, (o.n[1] - 0.5) * o.spacing, (o.n[2] - 0.5) * o.spacing};
+  if (o.dimension == 2) box.lo[2] = box.hi[2] = 0;
   b.shape = box;
   b.horizon = 3.015 * o.spacing;
   p.bodies = {b};
@@ -143,6 +160,7 @@ Problem benchmark_problem(const Options& o) {
   ic.component[0] = Expression{v0 + "*(" + term("x", 0) + "+0.5*" + term("y", 1) + ")", {}, false};
   ic.component[1] = Expression{v0 + "*(" + term("y", 1) + "+0.5*" + term("z", 2) + ")", {}, false};
   ic.component[2] = Expression{v0 + "*(" + term("z", 2) + "+0.5*" + term("x", 0) + ")", {}, false};
+  if (o.dimension == 2) ic.component[2] = Expression{"0", {}, false};
   p.initial_conditions = {ic};
   p.solver.parameters = complete_parameters(find_solver("explicit")->keys, {});  // the defaults a deck gets
   p.solver.parameters.set_integer("num_steps", o.steps);

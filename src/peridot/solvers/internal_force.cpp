@@ -99,13 +99,11 @@ inline double pair_critical_stretch(const ModelContext& ctx, const MaterialParam
 #endif  // PERIDOT_INTERNAL_FORCE_SHARED
 
 HWY_BEFORE_NAMESPACE();
-#if HWY_TARGET == HWY_AVX3
-#if defined(__GNUC__) && !defined(__clang__)
+#if HWY_TARGET == HWY_AVX3 && defined(__GNUC__) && !defined(__clang__)
 // 512-bit vectors for GCC's own vectorised loops too: their mask conversions fail at 256 bits.
 #pragma GCC target("prefer-vector-width=512")
 #endif
-#include "peridot/core/avx512_gather.hpp"
-#endif
+#include "peridot/core/simd_bonds.hpp"
 namespace peridot {
 namespace HWY_NAMESPACE {
 
@@ -258,23 +256,24 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
   f[0] = fx, f[1] = fy, f[2] = fz;
 }
 
-/// One thread's list of intact bonds for the AVX-512 loops (nothing without them).
-#if HWY_TARGET == HWY_AVX3
-using IntactScratch = avx512::IntactBonds;
-#else
-struct IntactScratch {};
-#endif
+// The vectorised loops of PMB and LPS in 2D and 3D (constant or 1/|ξ| influence), written once for every target with
+// core/simd_bonds.hpp: the partners' x and u loaded whole and transposed, the lengths from reciprocal_sqrt
+// (no square root or division per bond where the target has an estimate), a group of bonds per lane count,
+// the bond list read in place (a run with broken bonds: the list of its intact bonds, IntactBonds, so broken
+// bonds cost nothing, as in LAMMPS) and the flags of bonds that break set where they break. |ξ| and |Y| are
+// within about 1 ulp of the square roots, and a bond at rest still has e = |Y| − |ξ| = 0 exactly (the same
+// operations on the same bits), so the answers differ from the portable loops' by round-off. The
+// cancellation-free e = η·(2ξ + η)/(|Y| + |ξ|), η = u_j − u_i, cost 3–15 % of the AVX-512 PMB loop in two
+// runs and is not used. The scalar target has one lane: it keeps the portable loops above.
+constexpr bool vector_loops = HWY_TARGET != HWY_SCALAR && HWY_TARGET != HWY_EMU128;
+PERIDOT_SIMD_BONDS_BEGIN
 
-#if HWY_TARGET == HWY_AVX3
-PERIDOT_AVX512_BEGIN
-// The AVX-512 loops of 3D PMB and LPS (constant or 1/|ξ| influence): the partners' x and u loaded by
-// core/avx512_gather.hpp (transposes, not gathers), the lengths from reciprocal_sqrt (no square root or
-// division per bond, which wait for the divider), 8 bonds per iteration, the bond list read in place (a run
-// with broken bonds: the list of its intact bonds, IntactBonds, so broken bonds cost nothing, as in LAMMPS)
-// and the flags of bonds that break set where they break. |ξ| and |Y| are within about 1 ulp of the square
-// roots, and a bond at rest still has e = |Y| − |ξ| = 0 exactly (the same operations on the same bits), so
-// the answers differ from the portable loops' by round-off. The cancellation-free e = η·(2ξ + η)/(|Y| + |ξ|),
-// η = u_j − u_i, cost 3–15 % of the PMB loop in two runs and is not used.
+namespace hn = hwy::HWY_NAMESPACE;
+namespace sb = simd_bonds;
+using sb::D;
+using sb::M;
+using sb::V;
+using IntactScratch = sb::IntactBonds;
 
 /// The failure check of a pass: none, before any force uses the bond, or after (LAMMPS's order).
 enum class FailureCheck { none, before_force, after_force };
@@ -311,234 +310,237 @@ struct IntactRun {
   std::uint8_t* broken;  ///< the run's flags (b_begin on)
   const std::uint32_t* position = nullptr;  ///< listed bond → its place in the run (nullptr: in place)
 
-  IntactRun(const SameBlockRun& run, const std::uint32_t* neighbors, std::uint8_t* flags, avx512::IntactBonds& list)
+  IntactRun(const SameBlockRun& run, const std::uint32_t* neighbors, std::uint8_t* flags, IntactScratch& list)
       : neighbor(neighbors + run.b_begin), count(run.b_end - run.b_begin), broken(flags + run.b_begin) {
     // Without broken bonds the list would be the run itself: the same lanes and bits either way.
     if (list.compact(neighbor, broken, count))
       neighbor = list.neighbor.data(), count = list.count, position = list.position.data();
   }
 
-  /// Sets the flags of the bonds b … b+7 in `breaking`. Only when a bond breaks: a masked store, even of no
-  /// lane, stalls a later load of the same bytes (no store-to-load forwarding from masked stores); stored
-  /// in every group it cost 13 % of the PMB loop on Zen 4.
-  [[gnu::always_inline]] void mark_broken(__mmask8 breaking, std::uint64_t b) const {
-    if (!breaking) return;
-    if (position)
-      for (unsigned m = breaking; m != 0; m &= m - 1) broken[position[b + __builtin_ctz(m)]] = 1;
-    else
-      _mm_mask_storeu_epi8(broken + b, breaking, _mm_set1_epi8(1));
+  /// Sets the flags of the group's bonds b … in `breaking`. Only when a bond breaks: a masked store, even
+  /// of no lane, stalls a later load of the same bytes (no store-to-load forwarding from masked stores);
+  /// stored in every group it cost 13 % of the AVX-512 PMB loop on Zen 4.
+  [[gnu::always_inline]] void mark_broken(D d, M breaking, std::uint64_t b) const {
+    if (hn::AllFalse(d, breaking)) return;
+#if HWY_TARGET == HWY_AVX3
+    if (!position) {
+      _mm_mask_storeu_epi8(broken + b, static_cast<__mmask8>(breaking.raw), _mm_set1_epi8(1));
+      return;
+    }
+#endif
+    for (unsigned m = sb::mask_bits(d, breaking); m != 0; m &= m - 1) {
+      const std::uint64_t k = b + static_cast<unsigned>(__builtin_ctz(m));
+      broken[position ? position[k] : k] = 1;
+    }
   }
 };
 
 /// Point i's x and u, broadcast.
 struct PointI {
-  __m512d x[3], u[3];
-  PointI(const SameBlockRun& run, std::size_t i) {
-    for (int d = 0; d < 3; ++d) x[d] = _mm512_set1_pd(run.x[3 * i + d]), u[d] = _mm512_set1_pd(run.u[3 * i + d]);
+  V x[3], u[3];
+  PointI(D d, const SameBlockRun& run, std::size_t i) {
+    for (int c = 0; c < 3; ++c) x[c] = hn::Set(d, run.x[3 * i + c]), u[c] = hn::Set(d, run.u[3 * i + c]);
   }
 };
 
-/// The geometry of 8 bonds of point i: Y, |ξ|, |Y|, their reciprocals and e = |Y| − |ξ|.
+/// The geometry of a group of bonds of point i: Y, |ξ|, |Y|, 1/(|ξ||Y|) and e = |Y| − |ξ|. In 2D the third
+/// components are left out, as the portable loops do (run_bond_geometry).
+template <int Dim>
 struct BondGroup {
-  __m512d dy[3], xi, length, inverse_xi, inverse_length, e;
+  V dy[3], xi, length, inverse_product, e;
 
-  [[gnu::always_inline]] BondGroup(const SameBlockRun& run, const PointI& point, const std::uint32_t* j) {
-    __m512d dx[3], du[3];
-    avx512::load_vec3(run.x, j, dx);
-    avx512::load_vec3(run.u, j, du);
-    for (int d = 0; d < 3; ++d) dx[d] = dx[d] - point.x[d], du[d] = du[d] - point.u[d], dy[d] = dx[d] + du[d];
-    const __m512d xi2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-    const __m512d y2 = dy[0] * dy[0] + dy[1] * dy[1] + dy[2] * dy[2];
-    inverse_xi = avx512::reciprocal_sqrt(xi2), inverse_length = avx512::reciprocal_sqrt(y2);
-    xi = xi2 * inverse_xi, length = y2 * inverse_length;
+  [[gnu::always_inline]] BondGroup(D d, const SameBlockRun& run, const PointI& point, const std::uint32_t* j) {
+    V dx[3], du[3];
+    sb::load_vec3(d, run.x, j, dx);
+    sb::load_vec3(d, run.u, j, du);
+    for (int c = 0; c < 3; ++c) dx[c] = dx[c] - point.x[c], du[c] = du[c] - point.u[c], dy[c] = dx[c] + du[c];
+    if constexpr (Dim == 2) dx[2] = dy[2] = hn::Zero(d);
+    const V xi2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+    const V y2 = dy[0] * dy[0] + dy[1] * dy[1] + dy[2] * dy[2];
+    sb::lengths(d, xi2, y2, xi, length, inverse_product);  // 1/(|ξ||Y|) unused in the dilatation: not computed
     e = length - xi;
   }
 };
 
-/// Runs body(group, j, lanes, b) for the listed bonds' groups of 8 in order (b the first bond, j its
+/// Runs body(group, j, lanes, b) for the listed bonds' groups in order (b the first bond, j its
 /// neighbours, lanes those inside the list), two groups per iteration while two are whole, so that the
 /// scheduler sees two independent chains of loads, transposes and Newton steps side by side (37³ PMB and LPS
-/// 2–4 % faster in 3 interleaved pairs of runs; the sums are added in the same order, so the same bits).
-template <class Body>
-[[gnu::always_inline]] inline void for_each_group(const SameBlockRun& run, const PointI& point, const IntactRun& bonds,
-                                                  Body&& body) {
+/// 2–4 % faster with AVX-512 in 3 interleaved pairs of runs; the sums are added in the same order, so the same
+/// bits).
+template <int Dim, class Body>
+[[gnu::always_inline]] inline void for_each_group(D d, const SameBlockRun& run, const PointI& point,
+                                                  const IntactRun& bonds, Body&& body) {
+  const std::uint64_t n = hn::Lanes(d);
+  const M all = hn::FirstN(d, n);
   std::uint64_t b = 0;
-  for (; b + 16 <= bonds.count; b += 16) {
+  for (; b + 2 * n <= bonds.count; b += 2 * n) {
     const std::uint32_t* j = bonds.neighbor + b;
-    const BondGroup first(run, point, j), second(run, point, j + 8);
-    body(first, j, __mmask8{0xff}, b);
-    body(second, j + 8, __mmask8{0xff}, b + 8);
+    const BondGroup<Dim> first(d, run, point, j), second(d, run, point, j + n);
+    body(first, j, all, b);
+    body(second, j + n, all, b + n);
   }
-  std::uint32_t tail[8];
-  for (; b < bonds.count; b += 8) {
+  std::uint32_t tail[sb::max_lanes];
+  for (; b < bonds.count; b += n) {
     const std::uint32_t* j;
-    const __mmask8 lanes = avx512::group_lanes(bonds.neighbor, b, bonds.count, tail, j);
-    body(BondGroup(run, point, j), j, lanes, b);
+    const M lanes = sb::group_lanes(d, bonds.neighbor, b, bonds.count, tail, j);
+    body(BondGroup<Dim>(d, run, point, j), j, lanes, b);
   }
-}
-
-/// The 8 indices of `j` widened to 64 bits: a 32-bit gather would read point indices past 2³¹ as negative.
-[[gnu::always_inline]] inline __m512i wide_index(const std::uint32_t* j) {
-  return _mm512_cvtepu32_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(j)));
 }
 
 /// c V_j times the partial-volume factor of the bonds of a group, for a constant c of the run.
 struct PartnerVolume {
   bool uniform;  // lattice blocks: one volume for all, broadcast instead of gathered (a ninth of PMB's loads)
   double r;
-  __m512d c, c_uniform_volume, outer, half_over_r;
+  V c, c_uniform_volume, outer, half_over_r;
 
-  PartnerVolume(const SameBlockRun& run, double constant, double horizon)
-      : uniform(run.uniform_volume > 0), r(run.partial_volume_radius), c(_mm512_set1_pd(constant)),
-        c_uniform_volume(_mm512_set1_pd(constant * run.uniform_volume)), outer(_mm512_set1_pd(horizon + r)),
-        half_over_r(_mm512_set1_pd(r > 0 ? 0.5 / r : 0.0)) {}
+  PartnerVolume(D d, const SameBlockRun& run, double constant, double horizon)
+      : uniform(run.uniform_volume > 0), r(run.partial_volume_radius), c(hn::Set(d, constant)),
+        c_uniform_volume(hn::Set(d, constant * run.uniform_volume)), outer(hn::Set(d, horizon + r)),
+        half_over_r(hn::Set(d, r > 0 ? 0.5 / r : 0.0)) {}
 
-  /// `index`: wide_index(j), or nullptr to widen it only where the volumes are read.
-  [[gnu::always_inline]] __m512d operator()(const SameBlockRun& run, const std::uint32_t* j, const __m512i* index,
-                                            __m512d xi) const {
-    __m512d cv = c_uniform_volume;
-    if (!uniform) cv = c * _mm512_i64gather_pd(index ? *index : wide_index(j), run.volume, 8);
+  [[gnu::always_inline]] V operator()(D d, const SameBlockRun& run, const std::uint32_t* j, V xi) const {
+    V cv = c_uniform_volume;
+    if (!uniform) cv = c * sb::gather(d, run.volume, j);
     if (r > 0)  // partial_volume_factor: (δ + r − ξ)/(2r), clipped to [0, 1]
-      cv = cv * _mm512_min_pd(_mm512_max_pd((outer - xi) * half_over_r, _mm512_setzero_pd()), _mm512_set1_pd(1.0));
+      cv = cv * hn::Min(hn::Max((outer - xi) * half_over_r, hn::Zero(d)), hn::Set(d, 1.0));
     return cv;
   }
 };
 
 /// Which lanes of a group carry force and which break now, for the pass's check.
-template <FailureCheck Check>
-[[gnu::always_inline]] inline __mmask8 carrying_lanes(__mmask8 lanes, const BondGroup& g, __m512d break_limit,
-                                                      __mmask8& breaking) {
-  breaking = 0;
+template <FailureCheck Check, int Dim>
+[[gnu::always_inline]] inline M carrying_lanes(D d, M lanes, const BondGroup<Dim>& g, V break_limit, M& breaking) {
+  breaking = hn::FirstN(d, 0);
   if constexpr (Check == FailureCheck::none) return lanes;
-  breaking = lanes & _mm512_cmp_pd_mask(g.e, break_limit * g.xi, _CMP_GT_OQ);
-  return Check == FailureCheck::before_force ? lanes & ~breaking : lanes;
+  breaking = hn::And(lanes, hn::Gt(g.e, break_limit * g.xi));
+  return Check == FailureCheck::before_force ? hn::AndNot(breaking, lanes) : lanes;
 }
 
 /// The force on point i from its listed bonds, Σ carried(g, j) Y, with the pass's failure check: the bonds
 /// that break now get their flags, and carry nothing when they break before the force.
-template <FailureCheck Check, class Carried>
+template <int Dim, FailureCheck Check, class Carried>
 [[gnu::always_inline]] inline void sum_bond_forces(const SameBlockRun& run, std::size_t i, const IntactRun& bonds,
                                                    Carried&& carried_of, double f[3]) {
-  const PointI point(run, i);
-  const __m512d break_limit = _mm512_set1_pd(run.break_limit);
-  __m512d fx = _mm512_setzero_pd(), fy = fx, fz = fx;
-  for_each_group(run, point, bonds, [&](const BondGroup& g, const std::uint32_t* j, __mmask8 lanes, std::uint64_t b)
-                                        __attribute__((always_inline)) {
-    const __m512d carried = carried_of(g, j);
-    __mmask8 breaking;
-    const __mmask8 carries = carrying_lanes<Check>(lanes, g, break_limit, breaking);
-    bonds.mark_broken(breaking, b);
-    const __m512d scale = _mm512_maskz_mov_pd(carries, carried);
-    fx += scale * g.dy[0], fy += scale * g.dy[1], fz += scale * g.dy[2];
+  const D d;
+  const PointI point(d, run, i);
+  const V break_limit = hn::Set(d, run.break_limit);
+  V fx = hn::Zero(d), fy = fx, fz = fx;
+  for_each_group<Dim>(d, run, point, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, M lanes,
+                                                std::uint64_t b) __attribute__((always_inline)) {
+    const V carried = carried_of(g, j);
+    M breaking;
+    const M carries = carrying_lanes<Check>(d, lanes, g, break_limit, breaking);
+    bonds.mark_broken(d, breaking, b);
+    const V scale = hn::IfThenElseZero(carries, carried);
+    fx = hn::MulAdd(scale, g.dy[0], fx), fy = hn::MulAdd(scale, g.dy[1], fy), fz = hn::MulAdd(scale, g.dy[2], fz);
   });
-  f[0] = _mm512_reduce_add_pd(fx), f[1] = _mm512_reduce_add_pd(fy), f[2] = _mm512_reduce_add_pd(fz);
+  f[0] = sb::sum_lanes(d, fx), f[1] = sb::sum_lanes(d, fy), f[2] = sb::sum_lanes(d, fz);
 }
 
 /// PMB force on point i from its run: c ω e V_j/(|ξ||Y|) along Y per bond (Pmb::force_scalar of both ends),
 /// δ of the 1/|ξ| influence and c in one constant, and a uniform V_j too.
-template <InfluenceKind Influence, FailureCheck Check>
-void run_force_pmb_avx512(const SameBlockRun& run, const MaterialParams& p, const Pmb::Params& mp, std::size_t i,
+template <int Dim, InfluenceKind Influence, FailureCheck Check>
+void run_force_pmb_vector(const SameBlockRun& run, const MaterialParams& p, const Pmb::Params& mp, std::size_t i,
                           const IntactRun& bonds, double f[3]) {
-  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? mp.micromodulus * p.horizon : mp.micromodulus,
-                             p.horizon);
-  sum_bond_forces<Check>(run, i, bonds, [&](const BondGroup& g, const std::uint32_t* j) __attribute__((always_inline)) {
-    const __m512d cv = volume(run, j, nullptr, g.xi);
-    // ω/|ξ|: 1/|ξ|², δ being in c, or 1/|ξ|
-    const __m512d weight = Influence == InfluenceKind::inverse_distance ? g.inverse_xi * g.inverse_xi : g.inverse_xi;
-    return (cv * weight) * (g.e * g.inverse_length);
+  const D d;
+  const PartnerVolume volume(
+      d, run, Influence == InfluenceKind::inverse_distance ? mp.micromodulus * p.horizon : mp.micromodulus, p.horizon);
+  sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j) __attribute__((always_inline)) {
+    const V cv = volume(d, run, j, g.xi);
+    // ω/(|ξ||Y|): 1/(|ξ|²|Y|) = |Y|/(|ξ||Y|)², δ being in c, or 1/(|ξ||Y|)
+    const V weight =
+        Influence == InfluenceKind::inverse_distance ? g.inverse_product * g.inverse_product * g.length : g.inverse_product;
+    return (cv * weight) * g.e;
   }, f);
 }
 
 /// LPS dilatation sum Σ ω ξ e V_j over point i's run (δ of the 1/|ξ| influence in the volume constant), and
 /// what the bonds that break now took out of it.
-template <InfluenceKind Influence, FailureCheck Check>
-void run_dilatation_lps_avx512(const SameBlockRun& run, const MaterialParams& p, std::size_t i, const IntactRun& bonds,
+template <int Dim, InfluenceKind Influence, FailureCheck Check>
+void run_dilatation_lps_vector(const SameBlockRun& run, const MaterialParams& p, std::size_t i, const IntactRun& bonds,
                                double& sum_out, double& lost_out) {
   static_assert(Check != FailureCheck::after_force, "the dilatation pass checks before the force");
-  const PointI point(run, i);
-  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
-  const __m512d break_limit = _mm512_set1_pd(run.break_limit);
-  __m512d sum = _mm512_setzero_pd(), lost = sum;
-  for_each_group(run, point, bonds, [&](const BondGroup& g, const std::uint32_t* j, __mmask8 lanes, std::uint64_t b)
-                                        __attribute__((always_inline)) {
-    const __m512d cv = volume(run, j, nullptr, g.xi);
+  const D d;
+  const PointI point(d, run, i);
+  const PartnerVolume volume(d, run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
+  const V break_limit = hn::Set(d, run.break_limit);
+  V sum = hn::Zero(d), lost = sum;
+  for_each_group<Dim>(d, run, point, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, M lanes,
+                                                std::uint64_t b) __attribute__((always_inline)) {
+    const V cv = volume(d, run, j, g.xi);
     // ω ξ: ξ, or δ (in cv)
-    const __m512d term = (Influence == InfluenceKind::inverse_distance ? g.e : g.e * g.xi) * cv;
-    __mmask8 breaking;
-    const __mmask8 counts = carrying_lanes<Check>(lanes, g, break_limit, breaking);
-    bonds.mark_broken(breaking, b);
-    sum = _mm512_mask_add_pd(sum, counts, sum, term);
-    if constexpr (Check != FailureCheck::none) lost = _mm512_mask_add_pd(lost, breaking, lost, term);
+    const V term = (Influence == InfluenceKind::inverse_distance ? g.e : g.e * g.xi) * cv;
+    M breaking;
+    const M counts = carrying_lanes<Check>(d, lanes, g, break_limit, breaking);
+    bonds.mark_broken(d, breaking, b);
+    sum = sum + hn::IfThenElseZero(counts, term);
+    if constexpr (Check != FailureCheck::none) lost = lost + hn::IfThenElseZero(breaking, term);
   });
-  sum_out = _mm512_reduce_add_pd(sum), lost_out = _mm512_reduce_add_pd(lost);
+  sum_out = sb::sum_lanes(d, sum), lost_out = sb::sum_lanes(d, lost);
 }
 
 /// LPS force on point i from its run. Lps::force_scalar of both ends, t = ω[a (e − θξ/n) α_d + a θ ξ α_v]
 /// with a = 1/m, summed and regrouped as t = ω[α_d (a_i + a_j) e + β ξ (a_i θ_i + a_j θ_j)], β = α_v − α_d/n;
-/// with ω = δ/|ξ| that is δ[α_d (a_i + a_j) e/|ξ| + β (a_i θ_i + a_j θ_j)], δ in the volume constant. θ_j and
-/// a_j are gathered (one widening of the indices for both, and for V_j).
-template <InfluenceKind Influence, FailureCheck Check>
-void run_force_lps_avx512(const SameBlockRun& run, const MaterialParams& p, const Lps::Params& mp, const KernelFields& s,
+/// with ω = δ/|ξ| that is δ[α_d (a_i + a_j) e + β ξ (a_i θ_i + a_j θ_j)]/|ξ|, δ in the volume constant. θ_j and
+/// a_j are gathered.
+template <int Dim, InfluenceKind Influence, FailureCheck Check>
+void run_force_lps_vector(const SameBlockRun& run, const MaterialParams& p, const Lps::Params& mp, const KernelFields& s,
                           std::size_t i, const IntactRun& bonds, double f[3]) {
-  const PartnerVolume volume(run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
+  const D d;
+  const PartnerVolume volume(d, run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
   const double beta = mp.alpha_volumetric - mp.alpha_deviatoric * mp.inverse_dilatation_factor;
-  const __m512d alpha_d = _mm512_set1_pd(mp.alpha_deviatoric), beta_v = _mm512_set1_pd(beta);
-  const __m512d a_i = _mm512_set1_pd(s.inverse_m[i]), a_theta_i = _mm512_set1_pd(s.inverse_m[i] * s.theta[i]);
-  sum_bond_forces<Check>(run, i, bonds, [&](const BondGroup& g, const std::uint32_t* j) __attribute__((always_inline)) {
-    const __m512i index = wide_index(j);
-    const __m512d a_j = _mm512_i64gather_pd(index, s.inverse_m, 8);
-    const __m512d theta_j = _mm512_i64gather_pd(index, s.theta, 8);
-    const __m512d cv = volume(run, j, &index, g.xi);
-    const __m512d deviatoric = alpha_d * (a_i + a_j), volumetric = beta_v * (a_theta_i + a_j * theta_j);
-    const __m512d t = Influence == InfluenceKind::inverse_distance ? deviatoric * (g.e * g.inverse_xi) + volumetric
-                                                                   : deviatoric * g.e + volumetric * g.xi;
-    return (t * cv) * g.inverse_length;
+  const V alpha_d = hn::Set(d, mp.alpha_deviatoric), beta_v = hn::Set(d, beta);
+  const V a_i = hn::Set(d, s.inverse_m[i]), a_theta_i = hn::Set(d, s.inverse_m[i] * s.theta[i]);
+  sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j) __attribute__((always_inline)) {
+    const V a_j = sb::gather(d, s.inverse_m, j);
+    const V theta_j = sb::gather(d, s.theta, j);
+    const V cv = volume(d, run, j, g.xi);
+    const V deviatoric = alpha_d * (a_i + a_j), volumetric = beta_v * (a_theta_i + a_j * theta_j);
+    // t/|Y| = |ξ| t/(|ξ||Y|): with ω = δ/|ξ|, (α_d(a_i + a_j) e + β ξ (…)) /(|ξ||Y|)
+    const V t_xi = deviatoric * g.e + volumetric * g.xi;
+    return (Influence == InfluenceKind::inverse_distance ? t_xi * cv : t_xi * cv * g.xi) * g.inverse_product;
   }, f);
 }
-PERIDOT_AVX512_END
-#endif
 
-/// Point i's force from its own block through an AVX-512 loop, where one applies (3D PMB or LPS, the constant
-/// or 1/|ξ| influence); false elsewhere, and then nothing is done. It reads and writes the bond list itself.
+PERIDOT_SIMD_BONDS_END
+
+/// Point i's force from its own block through a vector loop, where one applies (2D or 3D PMB or LPS, the constant
+/// or 1/|ξ| influence, a target with more than one lane); false elsewhere, and then nothing is done. It reads
+/// and writes the bond list itself.
 template <int Dim, class Model>
 bool force_in_place(const SameBlockRun& run, const MaterialParams& p, const typename Model::Params& mp,
                     const KernelFields& s, std::size_t i, const std::uint32_t* neighbors, std::uint8_t* broken,
                     IntactScratch& scratch, double f[3]) {
-#if HWY_TARGET == HWY_AVX3
-  if constexpr (Dim == 3 && (std::is_same_v<Model, Pmb> || std::is_same_v<Model, Lps>)) {
+  if constexpr (vector_loops && (Dim == 2 || Dim == 3) && (std::is_same_v<Model, Pmb> || std::is_same_v<Model, Lps>)) {
     return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
       const IntactRun bonds(run, neighbors, broken, scratch);
       if constexpr (std::is_same_v<Model, Pmb>)
-        run_force_pmb_avx512<kind.value, check.value>(run, p, mp, i, bonds, f);
+        run_force_pmb_vector<Dim, kind.value, check.value>(run, p, mp, i, bonds, f);
       else
-        run_force_lps_avx512<kind.value, check.value>(run, p, mp, s, i, bonds, f);
+        run_force_lps_vector<Dim, kind.value, check.value>(run, p, mp, s, i, bonds, f);
     });
   }
-#endif
   (void)run, (void)p, (void)mp, (void)s, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)f;
   return false;
 }
 
-/// Point i's dilatation sum from its own block through the AVX-512 LPS loop, where it applies (3D LPS, the
-/// constant or 1/|ξ| influence); false elsewhere, and then nothing is done.
+/// Point i's dilatation sum from its own block through the vector LPS loop, where it applies (2D or 3D LPS, the
+/// constant or 1/|ξ| influence, a target with more than one lane); false elsewhere, and then nothing is done.
 template <int Dim, class Model>
 bool dilatation_in_place(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
                          const std::uint32_t* neighbors, std::uint8_t* broken, IntactScratch& scratch, double& sum,
                          double& lost) {
-#if HWY_TARGET == HWY_AVX3
-  if constexpr (Dim == 3 && std::is_same_v<Model, Lps>) {
+  if constexpr (vector_loops && (Dim == 2 || Dim == 3) && std::is_same_v<Model, Lps>) {
     if (failure_check(run) == FailureCheck::after_force) return false;  // never: this pass checks before the force
     return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
       const IntactRun bonds(run, neighbors, broken, scratch);
       if constexpr (check.value != FailureCheck::after_force)
-        run_dilatation_lps_avx512<kind.value, check.value>(run, p, i, bonds, sum, lost);
+        run_dilatation_lps_vector<Dim, kind.value, check.value>(run, p, i, bonds, sum, lost);
     });
   }
-#endif
   (void)run, (void)p, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)sum, (void)lost;
   return false;
 }
-
 }  // namespace
 
 void dilatation_pass(const ModelContext& ctx, const VectorField& u, std::vector<double>& theta, bool fail_bonds,
