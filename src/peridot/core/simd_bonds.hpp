@@ -9,6 +9,7 @@
 //     two Newton steps, which keeps the bond loops off the divider. AVX2 has only the 12-bit single-precision
 //     estimate: narrowing, estimating and three Newton steps made the AVX2 PMB loop 1.5× slower than two
 //     square roots and a division on AMD Zen 5 (bench_explicit, 50 k points), so the other targets divide.
+//   - load_tensor: the same for 3×3 tensors (9 doubles per point).
 //   - sum_lanes: the lanes' sum in a fixed order per target (the same bits for any thread count).
 // Per-target include guard (Highway's convention): a foreach_target file includes this once per target,
 // after HWY_BEFORE_NAMESPACE; the file includes <immintrin.h>, <algorithm>, <cstdint> and <vector> at its
@@ -77,6 +78,37 @@ constexpr std::size_t max_lanes = HWY_MAX_BYTES / sizeof(double);
 #endif
 }
 
+/// out[c] lane k = base[9 j_k + c], c < 9, for the Lanes(d) indices of `j` (row-major 3×3 tensors).
+[[gnu::always_inline]] inline void load_tensor(D d, const double* base, const std::uint32_t* j, V out[9]) {
+#if HWY_TARGET == HWY_AVX3
+  (void)d;
+  __m512d o[9];
+  avx512::load_tensor(base, j, o);
+  for (int c = 0; c < 9; ++c) out[c] = V{o[c]};
+#elif HWY_TARGET == HWY_AVX2
+  (void)d;
+  // Components 0–3 and 4–7 of the four records as two 4×4 transposes, the ninth one by one.
+  const double* r[4];
+  for (int k = 0; k < 4; ++k) r[k] = base + 9 * static_cast<std::uint64_t>(j[k]);
+  for (int half = 0; half < 2; ++half) {
+    __m256d q[4];
+    for (int k = 0; k < 4; ++k) q[k] = _mm256_loadu_pd(r[k] + 4 * half);
+    const __m256d lo01 = _mm256_unpacklo_pd(q[0], q[1]), hi01 = _mm256_unpackhi_pd(q[0], q[1]);  // c0 c0 | c2 c2
+    const __m256d lo23 = _mm256_unpacklo_pd(q[2], q[3]), hi23 = _mm256_unpackhi_pd(q[2], q[3]);
+    out[4 * half + 0] = V{_mm256_permute2f128_pd(lo01, lo23, 0x20)};
+    out[4 * half + 1] = V{_mm256_permute2f128_pd(hi01, hi23, 0x20)};
+    out[4 * half + 2] = V{_mm256_permute2f128_pd(lo01, lo23, 0x31)};
+    out[4 * half + 3] = V{_mm256_permute2f128_pd(hi01, hi23, 0x31)};
+  }
+  out[8] = V{_mm256_setr_pd(r[0][8], r[1][8], r[2][8], r[3][8])};
+#else
+  HWY_ALIGN double lanes[9][max_lanes];
+  for (std::size_t k = 0; k < hn::Lanes(d); ++k)
+    for (int c = 0; c < 9; ++c) lanes[c][k] = base[9 * static_cast<std::uint64_t>(j[k]) + c];
+  for (int c = 0; c < 9; ++c) out[c] = hn::Load(d, lanes[c]);
+#endif
+}
+
 /// base[j_k] in lane k (64-bit indices: a 32-bit gather would read point indices past 2³¹ as negative).
 [[gnu::always_inline]] inline V gather(D d, const double* base, const std::uint32_t* j) {
   const hn::Rebind<std::uint32_t, D> d32;
@@ -120,6 +152,24 @@ constexpr std::size_t max_lanes = HWY_MAX_BYTES / sizeof(double);
   for (std::uint64_t k = 0; k < n; ++k) tail[k] = neighbor[b + std::min(k, left - 1)];
   j = tail;
   return hn::FirstN(d, static_cast<std::size_t>(left));
+}
+
+/// The weights of the group of bonds b … of a weighted run (state/bond_runs.hpp: `count` bonds, neighbours,
+/// weights, broken flags), 0 for a broken bond or a lane past the run, with `j` pointed at the group's
+/// neighbours. AVX-512 reads the run in place (the last group masked by group_lanes, the broken flags tested);
+/// the other targets read a padded copy whose count is a whole number of groups and whose weights are
+/// already 0 where a bond is broken.
+[[gnu::always_inline]] inline V group_weights(D d, const std::uint32_t* neighbor, const std::uint8_t* broken,
+                                              const double* weight, std::uint64_t b, std::uint64_t count,
+                                              std::uint32_t tail[max_lanes], const std::uint32_t*& j) {
+#if HWY_TARGET == HWY_AVX3
+  (void)d;
+  return V{avx512::load_group(neighbor, broken, weight, b, count, tail, j)};
+#else
+  (void)broken, (void)count, (void)tail;
+  j = neighbor + b;
+  return hn::LoadU(d, weight + b);
+#endif
 }
 
 /// The lanes of m as bits, lane k in bit k.

@@ -19,9 +19,7 @@
 #include <hwy/highway.h>
 
 HWY_BEFORE_NAMESPACE();
-#if HWY_TARGET == HWY_AVX3
-#include "peridot/core/avx512_gather.hpp"
-#endif
+#include "peridot/core/simd_bonds.hpp"
 namespace peridot::correspondence {
 namespace HWY_NAMESPACE {
 
@@ -105,75 +103,74 @@ void run_force(const ForceRun& run_in, std::size_t i, double sum_Ajxi[3], double
   fh[0] += h0, fh[1] += h1, fh[2] += h2;
 }
 
-#if HWY_TARGET == HWY_AVX3
-PERIDOT_AVX512_BEGIN
-/// run_force with the partners' records loaded by core/avx512_gather.hpp, 8 bonds per iteration. Each
-/// bond's terms are the same operations in the same order as above (no fused multiply-add, CMakeLists.txt);
-/// only the order of the sums over the bonds differs.
+PERIDOT_SIMD_BONDS_BEGIN
+/// run_force in Highway's vectors (core/simd_bonds.hpp), a group of bonds per iteration. Each bond's terms
+/// are the same operations in the same order as above (no fused multiply-add, CMakeLists.txt); only the
+/// order of the sums over the bonds differs.
 template <bool Hourglass, bool Damping>
-void run_force_avx512(const ForceRun& run, std::size_t i, double sum_Ajxi[3], double sum_xi[3], double fh[3]) {
-  // (GCC's vector arithmetic on __m512d; no fused multiply-add, CMakeLists.txt.)
+[[maybe_unused]] void run_force_vector(const ForceRun& run, std::size_t i, double sum_Ajxi[3], double sum_xi[3],
+                                       double fh[3]) {
+  namespace sb = ::peridot::HWY_NAMESPACE::simd_bonds;
+  namespace hn = hwy::HWY_NAMESPACE;
+  using V = sb::V;
+  const sb::D d;
   // Σ_c (P_c + Q_c) ξ_c over one row of two tensors, in the order of the scalar loop.
-  const auto row = [](const __m512d* P, const __m512d* Q, const __m512d* dx) {
+  const auto row = [](const V* P, const V* Q, const V* dx) {
     return (P[0] + Q[0]) * dx[0] + (P[1] + Q[1]) * dx[1] + (P[2] + Q[2]) * dx[2];
   };
-  __m512d x_i[3], u_i[3], v_i[3], F_i[9], Fdot_i[9];
-  for (int d = 0; d < 3; ++d)
-    x_i[d] = _mm512_set1_pd(run.x[3 * i + d]), u_i[d] = _mm512_set1_pd(run.u[3 * i + d]),
-    v_i[d] = _mm512_set1_pd(run.v[3 * i + d]);
+  V x_i[3], u_i[3], v_i[3], F_i[9], Fdot_i[9];
+  for (int c = 0; c < 3; ++c)
+    x_i[c] = hn::Set(d, run.x[3 * i + c]), u_i[c] = hn::Set(d, run.u[3 * i + c]), v_i[c] = hn::Set(d, run.v[3 * i + c]);
   for (int c = 0; c < 9; ++c)
-    F_i[c] = _mm512_set1_pd(run.F[9 * i + c]), Fdot_i[c] = _mm512_set1_pd(Damping ? run.Fdot[9 * i + c] : 0.0);
-  const __m512d two = _mm512_set1_pd(2.0), one = _mm512_set1_pd(1.0), zero = _mm512_setzero_pd();
-  const __m512d stiffness = _mm512_set1_pd(run.stiffness), damping = _mm512_set1_pd(run.damping);
-  __m512d t[3] = {zero, zero, zero}, m[3] = {zero, zero, zero}, h[3] = {zero, zero, zero};
+    F_i[c] = hn::Set(d, run.F[9 * i + c]), Fdot_i[c] = hn::Set(d, Damping ? run.Fdot[9 * i + c] : 0.0);
+  const V two = hn::Set(d, 2.0), one = hn::Set(d, 1.0), zero = hn::Zero(d);
+  const V stiffness = hn::Set(d, run.stiffness), damping = hn::Set(d, run.damping);
+  V t[3] = {zero, zero, zero}, m[3] = {zero, zero, zero}, h[3] = {zero, zero, zero};
   const WeightedRun bonds = run.bonds;
-  std::uint32_t tail[8];
-  for (std::uint64_t k = 0; k < bonds.count; k += 8) {
+  std::uint32_t tail[sb::max_lanes];
+  for (std::uint64_t k = 0; k < bonds.count; k += hn::Lanes(d)) {
     const std::uint32_t* j;
-    const __m512d w = avx512::load_group(bonds.neighbor, bonds.broken, bonds.weight, k, bonds.count, tail, j);
-    __m512d dx[3], a[9];
-    avx512::load_vec3(run.x, j, dx);
-    for (int d = 0; d < 3; ++d) dx[d] = dx[d] - x_i[d];
-    avx512::load_tensor(run.A, j, a);
-    for (int r = 0; r < 3; ++r)
-      t[r] += w * (a[3 * r] * dx[0] + a[3 * r + 1] * dx[1] + a[3 * r + 2] * dx[2]);
-    for (int d = 0; d < 3; ++d) m[d] += w * dx[d];
+    const V w = sb::group_weights(d, bonds.neighbor, bonds.broken, bonds.weight, k, bonds.count, tail, j);
+    V dx[3], a[9];
+    sb::load_vec3(d, run.x, j, dx);
+    for (int c = 0; c < 3; ++c) dx[c] = dx[c] - x_i[c];
+    sb::load_tensor(d, run.A, j, a);
+    for (int r = 0; r < 3; ++r) t[r] = t[r] + w * (a[3 * r] * dx[0] + a[3 * r + 1] * dx[1] + a[3 * r + 2] * dx[2]);
+    for (int c = 0; c < 3; ++c) m[c] = m[c] + w * dx[c];
     if constexpr (Hourglass) {
-      __m512d y[3], Fj[9], z[3];
-      avx512::load_vec3(run.u, j, y);
-      for (int d = 0; d < 3; ++d) y[d] = dx[d] + (y[d] - u_i[d]);
-      avx512::load_tensor(run.F, j, Fj);
+      V y[3], Fj[9], z[3];
+      sb::load_vec3(d, run.u, j, y);
+      for (int c = 0; c < 3; ++c) y[c] = dx[c] + (y[c] - u_i[c]);
+      sb::load_tensor(d, run.F, j, Fj);
       for (int r = 0; r < 3; ++r) z[r] = two * y[r] - row(F_i + 3 * r, Fj + 3 * r, dx);
-      __m512d scalar = stiffness * (z[0] * y[0] + z[1] * y[1] + z[2] * y[2]);
+      V scalar = stiffness * (z[0] * y[0] + z[1] * y[1] + z[2] * y[2]);
       if constexpr (Damping) {
-        __m512d dv[3], Gj[9], q[3];
-        avx512::load_vec3(run.v, j, dv);
-        for (int d = 0; d < 3; ++d) dv[d] = dv[d] - v_i[d];
-        avx512::load_tensor(run.Fdot, j, Gj);
+        V dv[3], Gj[9], q[3];
+        sb::load_vec3(d, run.v, j, dv);
+        for (int c = 0; c < 3; ++c) dv[c] = dv[c] - v_i[c];
+        sb::load_tensor(d, run.Fdot, j, Gj);
         for (int r = 0; r < 3; ++r) q[r] = two * dv[r] - row(Fdot_i + 3 * r, Gj + 3 * r, dx);
-        scalar += damping * (q[0] * y[0] + q[1] * y[1] + q[2] * y[2]);
+        scalar = scalar + damping * (q[0] * y[0] + q[1] * y[1] + q[2] * y[2]);
       }
-      const __m512d xi_length = _mm512_sqrt_pd(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
-      __m512d y_squared = y[0] * y[0] + y[1] * y[1] + y[2] * y[2];
-      y_squared = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(y_squared, zero, _CMP_GT_OQ), one, y_squared);
-      const __m512d scale = w * scalar / (xi_length * y_squared);
-      for (int d = 0; d < 3; ++d) h[d] += scale * y[d];
+      const V xi_length = hn::Sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+      V y_squared = y[0] * y[0] + y[1] * y[1] + y[2] * y[2];
+      y_squared = hn::IfThenElse(hn::Gt(y_squared, zero), y_squared, one);
+      const V scale = w * scalar / (xi_length * y_squared);
+      for (int c = 0; c < 3; ++c) h[c] = h[c] + scale * y[c];
     }
   }
-  for (int d = 0; d < 3; ++d)
-    sum_Ajxi[d] += _mm512_reduce_add_pd(t[d]), sum_xi[d] += _mm512_reduce_add_pd(m[d]),
-        fh[d] += _mm512_reduce_add_pd(h[d]);
+  for (int c = 0; c < 3; ++c)
+    sum_Ajxi[c] += sb::sum_lanes(d, t[c]), sum_xi[c] += sb::sum_lanes(d, m[c]), fh[c] += sb::sum_lanes(d, h[c]);
 }
-PERIDOT_AVX512_END
-#endif
+PERIDOT_SIMD_BONDS_END
 
-/// The run's force: the AVX-512 loop where the build has it.
+/// The run's force: the vector loop, or the portable one on the one-lane scalar target.
 template <bool Hourglass, bool Damping>
 void run_force_sums(const ForceRun& run, std::size_t i, double sum_Ajxi[3], double sum_xi[3], double fh[3]) {
-#if HWY_TARGET == HWY_AVX3
-  run_force_avx512<Hourglass, Damping>(run, i, sum_Ajxi, sum_xi, fh);
-#else
+#if HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128
   run_force<Hourglass, Damping>(run, i, sum_Ajxi, sum_xi, fh);
+#else
+  run_force_vector<Hourglass, Damping>(run, i, sum_Ajxi, sum_xi, fh);
 #endif
 }
 

@@ -85,9 +85,7 @@ Mat3 shape_tensor_of(const CorrespondenceContext& ctx, std::size_t i) {
 #endif  // PERIDOT_KINEMATICS_SHARED
 
 HWY_BEFORE_NAMESPACE();
-#if HWY_TARGET == HWY_AVX3
-#include "peridot/core/avx512_gather.hpp"
-#endif
+#include "peridot/core/simd_bonds.hpp"
 namespace peridot::correspondence {
 namespace HWY_NAMESPACE {
 
@@ -141,46 +139,47 @@ struct KinematicsRun {
   for (int c = 0; c < 9; ++c) H[c] += h_run[c], Ndot[c] += n_run[c];
 }
 
-#if HWY_TARGET == HWY_AVX3
-PERIDOT_AVX512_BEGIN
-/// run_kinematics with the partners' records loaded by core/avx512_gather.hpp, 8 bonds per iteration;
-/// each bond's terms are the same operations as above, only the order of the sums over bonds differs.
-void run_kinematics_avx512(const KinematicsRun& run, std::size_t i, double K[6], double H[9], double Ndot[9]) {
-  __m512d x_i[3], u_i[3], v_i[3];
-  for (int d = 0; d < 3; ++d)
-    x_i[d] = _mm512_set1_pd(run.x[3 * i + d]), u_i[d] = _mm512_set1_pd(run.u[3 * i + d]),
-    v_i[d] = _mm512_set1_pd(run.v[3 * i + d]);
-  __m512d k[6], h[9], n[9];
-  for (int c = 0; c < 6; ++c) k[c] = _mm512_setzero_pd();
-  for (int c = 0; c < 9; ++c) h[c] = _mm512_setzero_pd(), n[c] = _mm512_setzero_pd();
+PERIDOT_SIMD_BONDS_BEGIN
+/// run_kinematics in Highway's vectors (core/simd_bonds.hpp), a group of bonds per iteration; each bond's
+/// terms are the same operations as above, only the order of the sums over bonds differs.
+[[maybe_unused]] void run_kinematics_vector(const KinematicsRun& run, std::size_t i, double K[6], double H[9], double Ndot[9]) {
+  namespace sb = ::peridot::HWY_NAMESPACE::simd_bonds;
+  namespace hn = hwy::HWY_NAMESPACE;
+  using V = sb::V;
+  const sb::D d;
+  V x_i[3], u_i[3], v_i[3];
+  for (int c = 0; c < 3; ++c)
+    x_i[c] = hn::Set(d, run.x[3 * i + c]), u_i[c] = hn::Set(d, run.u[3 * i + c]), v_i[c] = hn::Set(d, run.v[3 * i + c]);
+  V k[6], h[9], n[9];
+  for (int c = 0; c < 6; ++c) k[c] = hn::Zero(d);
+  for (int c = 0; c < 9; ++c) h[c] = hn::Zero(d), n[c] = hn::Zero(d);
   const WeightedRun bonds = run.bonds;
-  std::uint32_t tail[8];
-  for (std::uint64_t b = 0; b < bonds.count; b += 8) {
+  std::uint32_t tail[sb::max_lanes];
+  for (std::uint64_t b = 0; b < bonds.count; b += hn::Lanes(d)) {
     const std::uint32_t* j;
-    const __m512d w = avx512::load_group(bonds.neighbor, bonds.broken, bonds.weight, b, bonds.count, tail, j);
-    __m512d dx[3], du[3], dv[3], wx[3];
-    avx512::load_vec3(run.x, j, dx);
-    avx512::load_vec3(run.u, j, du);
-    avx512::load_vec3(run.v, j, dv);
-    for (int d = 0; d < 3; ++d) dx[d] = dx[d] - x_i[d], du[d] = du[d] - u_i[d], dv[d] = dv[d] - v_i[d];
-    for (int d = 0; d < 3; ++d) wx[d] = w * dx[d];
-    k[0] += wx[0] * dx[0], k[1] += wx[0] * dx[1], k[2] += wx[0] * dx[2];
-    k[3] += wx[1] * dx[1], k[4] += wx[1] * dx[2], k[5] += wx[2] * dx[2];
+    const V w = sb::group_weights(d, bonds.neighbor, bonds.broken, bonds.weight, b, bonds.count, tail, j);
+    V dx[3], du[3], dv[3], wx[3];
+    sb::load_vec3(d, run.x, j, dx);
+    sb::load_vec3(d, run.u, j, du);
+    sb::load_vec3(d, run.v, j, dv);
+    for (int c = 0; c < 3; ++c) dx[c] = dx[c] - x_i[c], du[c] = du[c] - u_i[c], dv[c] = dv[c] - v_i[c];
+    for (int c = 0; c < 3; ++c) wx[c] = w * dx[c];
+    k[0] = k[0] + wx[0] * dx[0], k[1] = k[1] + wx[0] * dx[1], k[2] = k[2] + wx[0] * dx[2];
+    k[3] = k[3] + wx[1] * dx[1], k[4] = k[4] + wx[1] * dx[2], k[5] = k[5] + wx[2] * dx[2];
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) h[3 * r + c] += du[r] * wx[c], n[3 * r + c] += dv[r] * wx[c];
+      for (int c = 0; c < 3; ++c) h[3 * r + c] = h[3 * r + c] + du[r] * wx[c], n[3 * r + c] = n[3 * r + c] + dv[r] * wx[c];
   }
-  for (int c = 0; c < 6; ++c) K[c] += _mm512_reduce_add_pd(k[c]);
-  for (int c = 0; c < 9; ++c) H[c] += _mm512_reduce_add_pd(h[c]), Ndot[c] += _mm512_reduce_add_pd(n[c]);
+  for (int c = 0; c < 6; ++c) K[c] += sb::sum_lanes(d, k[c]);
+  for (int c = 0; c < 9; ++c) H[c] += sb::sum_lanes(d, h[c]), Ndot[c] += sb::sum_lanes(d, n[c]);
 }
-PERIDOT_AVX512_END
-#endif
+PERIDOT_SIMD_BONDS_END
 
-/// The run's sums: the AVX-512 loop where the build has it.
+/// The run's sums: the vector loop, or the portable one on the one-lane scalar target.
 inline void run_kinematics_sums(const KinematicsRun& run, std::size_t i, double K[6], double H[9], double Ndot[9]) {
-#if HWY_TARGET == HWY_AVX3
-  run_kinematics_avx512(run, i, K, H, Ndot);
-#else
+#if HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128
   run_kinematics(run, i, K, H, Ndot);
+#else
+  run_kinematics_vector(run, i, K, H, Ndot);
 #endif
 }
 

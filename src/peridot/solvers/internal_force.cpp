@@ -104,6 +104,7 @@ HWY_BEFORE_NAMESPACE();
 #pragma GCC target("prefer-vector-width=512")
 #endif
 #include "peridot/core/simd_bonds.hpp"
+#include "hwy/contrib/math/math-inl.h"  // Exp, for the Gaussian influence
 namespace peridot {
 namespace HWY_NAMESPACE {
 
@@ -256,7 +257,7 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
   f[0] = fx, f[1] = fy, f[2] = fz;
 }
 
-// The vectorised loops of PMB and LPS in 2D and 3D (constant or 1/|ξ| influence), written once for every target with
+// The vectorised loops of PMB and LPS in 2D and 3D (every influence function), written once for every target with
 // core/simd_bonds.hpp: the partners' x and u loaded whole and transposed, the lengths from reciprocal_sqrt
 // (no square root or division per bond where the target has an estimate), a group of bonds per lane count,
 // the bond list read in place (a run with broken bonds: the list of its intact bonds, IntactBonds, so broken
@@ -285,7 +286,7 @@ inline FailureCheck failure_check(const SameBlockRun& run) {
 }
 
 /// Runs f(std::integral_constant<FailureCheck, check>, std::integral_constant<InfluenceKind, kind>) for the
-/// run's check and the constant or 1/|ξ| influence; false, and nothing run, for another influence.
+/// run's check and influence.
 template <class F>
 bool with_check_and_influence(const SameBlockRun& run, InfluenceKind influence, F&& f) {
   const auto with_check = [&](auto kind) {
@@ -300,7 +301,7 @@ bool with_check_and_influence(const SameBlockRun& run, InfluenceKind influence, 
     return with_check(std::integral_constant<InfluenceKind, InfluenceKind::constant>{});
   if (influence == InfluenceKind::inverse_distance)
     return with_check(std::integral_constant<InfluenceKind, InfluenceKind::inverse_distance>{});
-  return false;  // the Gaussian influence takes the portable loops
+  return with_check(std::integral_constant<InfluenceKind, InfluenceKind::gaussian>{});
 }
 
 /// The bonds of a run the loops visit: the run in place, or, with any broken, the list of its intact ones.
@@ -347,7 +348,7 @@ struct PointI {
 /// components are left out, as the portable loops do (run_bond_geometry).
 template <int Dim>
 struct BondGroup {
-  V dy[3], xi, length, inverse_product, e;
+  V dy[3], xi2, xi, length, inverse_product, e;
 
   [[gnu::always_inline]] BondGroup(D d, const SameBlockRun& run, const PointI& point, const std::uint32_t* j) {
     V dx[3], du[3];
@@ -355,7 +356,7 @@ struct BondGroup {
     sb::load_vec3(d, run.u, j, du);
     for (int c = 0; c < 3; ++c) dx[c] = dx[c] - point.x[c], du[c] = du[c] - point.u[c], dy[c] = dx[c] + du[c];
     if constexpr (Dim == 2) dx[2] = dy[2] = hn::Zero(d);
-    const V xi2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+    xi2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
     const V y2 = dy[0] * dy[0] + dy[1] * dy[1] + dy[2] * dy[2];
     sb::lengths(d, xi2, y2, xi, length, inverse_product);  // 1/(|ξ||Y|) unused in the dilatation: not computed
     e = length - xi;
@@ -385,6 +386,13 @@ template <int Dim, class Body>
     const M lanes = sb::group_lanes(d, bonds.neighbor, b, bonds.count, tail, j);
     body(BondGroup<Dim>(d, run, point, j), j, lanes, b);
   }
+}
+
+/// ω of a group for the Gaussian influence, exp(−ξ²/δ²) (Highway's Exp: within a few ulp of std::exp);
+/// `minus_inverse_h2` = −1/δ². The other influences are folded into each loop's constants and lengths.
+template <int Dim>
+[[gnu::always_inline]] inline V gaussian_influence(D d, const BondGroup<Dim>& g, V minus_inverse_h2) {
+  return hn::Exp(d, g.xi2 * minus_inverse_h2);
 }
 
 /// c V_j times the partial-volume factor of the bonds of a group, for a constant c of the run.
@@ -432,7 +440,7 @@ template <int Dim, FailureCheck Check, class Carried>
     const M carries = carrying_lanes<Check>(d, lanes, g, break_limit, breaking);
     bonds.mark_broken(d, breaking, b);
     const V scale = hn::IfThenElseZero(carries, carried);
-    fx = hn::MulAdd(scale, g.dy[0], fx), fy = hn::MulAdd(scale, g.dy[1], fy), fz = hn::MulAdd(scale, g.dy[2], fz);
+    fx = fx + scale * g.dy[0], fy = fy + scale * g.dy[1], fz = fz + scale * g.dy[2];  // no fused multiply-add (CMakeLists.txt)
   });
   f[0] = sb::sum_lanes(d, fx), f[1] = sb::sum_lanes(d, fy), f[2] = sb::sum_lanes(d, fz);
 }
@@ -445,11 +453,13 @@ void run_force_pmb_vector(const SameBlockRun& run, const MaterialParams& p, cons
   const D d;
   const PartnerVolume volume(
       d, run, Influence == InfluenceKind::inverse_distance ? mp.micromodulus * p.horizon : mp.micromodulus, p.horizon);
+  const V minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
   sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j) __attribute__((always_inline)) {
     const V cv = volume(d, run, j, g.xi);
-    // ω/(|ξ||Y|): 1/(|ξ|²|Y|) = |Y|/(|ξ||Y|)², δ being in c, or 1/(|ξ||Y|)
-    const V weight =
-        Influence == InfluenceKind::inverse_distance ? g.inverse_product * g.inverse_product * g.length : g.inverse_product;
+    // ω/(|ξ||Y|): 1/(|ξ|²|Y|) = |Y|/(|ξ||Y|)², δ being in c; 1/(|ξ||Y|); exp(−ξ²/δ²)/(|ξ||Y|)
+    V weight = g.inverse_product;
+    if constexpr (Influence == InfluenceKind::inverse_distance) weight = g.inverse_product * g.inverse_product * g.length;
+    if constexpr (Influence == InfluenceKind::gaussian) weight = gaussian_influence(d, g, minus_inverse_h2) * weight;
     return (cv * weight) * g.e;
   }, f);
 }
@@ -463,13 +473,14 @@ void run_dilatation_lps_vector(const SameBlockRun& run, const MaterialParams& p,
   const D d;
   const PointI point(d, run, i);
   const PartnerVolume volume(d, run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
-  const V break_limit = hn::Set(d, run.break_limit);
+  const V break_limit = hn::Set(d, run.break_limit), minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
   V sum = hn::Zero(d), lost = sum;
   for_each_group<Dim>(d, run, point, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, M lanes,
                                                 std::uint64_t b) __attribute__((always_inline)) {
     const V cv = volume(d, run, j, g.xi);
-    // ω ξ: ξ, or δ (in cv)
-    const V term = (Influence == InfluenceKind::inverse_distance ? g.e : g.e * g.xi) * cv;
+    // ω ξ: δ (in cv), ξ, or exp(−ξ²/δ²) ξ
+    V term = (Influence == InfluenceKind::inverse_distance ? g.e : g.e * g.xi) * cv;
+    if constexpr (Influence == InfluenceKind::gaussian) term = gaussian_influence(d, g, minus_inverse_h2) * term;
     M breaking;
     const M counts = carrying_lanes<Check>(d, lanes, g, break_limit, breaking);
     bonds.mark_broken(d, breaking, b);
@@ -491,6 +502,7 @@ void run_force_lps_vector(const SameBlockRun& run, const MaterialParams& p, cons
   const double beta = mp.alpha_volumetric - mp.alpha_deviatoric * mp.inverse_dilatation_factor;
   const V alpha_d = hn::Set(d, mp.alpha_deviatoric), beta_v = hn::Set(d, beta);
   const V a_i = hn::Set(d, s.inverse_m[i]), a_theta_i = hn::Set(d, s.inverse_m[i] * s.theta[i]);
+  const V minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
   sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j) __attribute__((always_inline)) {
     const V a_j = sb::gather(d, s.inverse_m, j);
     const V theta_j = sb::gather(d, s.theta, j);
@@ -498,14 +510,17 @@ void run_force_lps_vector(const SameBlockRun& run, const MaterialParams& p, cons
     const V deviatoric = alpha_d * (a_i + a_j), volumetric = beta_v * (a_theta_i + a_j * theta_j);
     // t/|Y| = |ξ| t/(|ξ||Y|): with ω = δ/|ξ|, (α_d(a_i + a_j) e + β ξ (…)) /(|ξ||Y|)
     const V t_xi = deviatoric * g.e + volumetric * g.xi;
-    return (Influence == InfluenceKind::inverse_distance ? t_xi * cv : t_xi * cv * g.xi) * g.inverse_product;
+    if constexpr (Influence == InfluenceKind::inverse_distance) return t_xi * cv * g.inverse_product;
+    V carried = t_xi * cv * g.xi * g.inverse_product;
+    if constexpr (Influence == InfluenceKind::gaussian) carried = gaussian_influence(d, g, minus_inverse_h2) * carried;
+    return carried;
   }, f);
 }
 
 PERIDOT_SIMD_BONDS_END
 
-/// Point i's force from its own block through a vector loop, where one applies (2D or 3D PMB or LPS, the constant
-/// or 1/|ξ| influence, a target with more than one lane); false elsewhere, and then nothing is done. It reads
+/// Point i's force from its own block through a vector loop, where one applies (2D or 3D PMB or LPS, a target
+/// with more than one lane); false elsewhere, and then nothing is done. It reads
 /// and writes the bond list itself.
 template <int Dim, class Model>
 bool force_in_place(const SameBlockRun& run, const MaterialParams& p, const typename Model::Params& mp,
@@ -524,8 +539,8 @@ bool force_in_place(const SameBlockRun& run, const MaterialParams& p, const type
   return false;
 }
 
-/// Point i's dilatation sum from its own block through the vector LPS loop, where it applies (2D or 3D LPS, the
-/// constant or 1/|ξ| influence, a target with more than one lane); false elsewhere, and then nothing is done.
+/// Point i's dilatation sum from its own block through the vector LPS loop, where it applies (2D or 3D LPS, a
+/// target with more than one lane); false elsewhere, and then nothing is done.
 template <int Dim, class Model>
 bool dilatation_in_place(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
                          const std::uint32_t* neighbors, std::uint8_t* broken, IntactScratch& scratch, double& sum,
