@@ -380,12 +380,20 @@ template <int Dim, class Body>
     body(first, j, all, b);
     body(second, j + n, all, b + n);
   }
-  std::uint32_t tail[sb::max_lanes];
-  for (; b < bonds.count; b += n) {
-    const std::uint32_t* j;
-    const M lanes = sb::group_lanes(d, bonds.neighbor, b, bonds.count, tail, j);
-    body(BondGroup<Dim>(d, run, point, j), j, lanes, b);
+  for (; b + n <= bonds.count; b += n) body(BondGroup<Dim>(d, run, point, bonds.neighbor + b), bonds.neighbor + b, all, b);
+  if (b == bonds.count) return;
+  if (bonds.count >= n) {
+    // The last partial group as the list's last n bonds with the lanes done already masked off: no copy of
+    // the neighbours (2D LPS, 28 bonds per family, was 20 % slower with AVX-512 than with AVX2 with it).
+    const std::uint64_t start = bonds.count - n;
+    body(BondGroup<Dim>(d, run, point, bonds.neighbor + start), bonds.neighbor + start,
+         hn::Not(hn::FirstN(d, static_cast<std::size_t>(b - start))), start);
+    return;
   }
+  std::uint32_t tail[sb::max_lanes];
+  const std::uint32_t* j;
+  const M lanes = sb::group_lanes(d, bonds.neighbor, b, bonds.count, tail, j);
+  body(BondGroup<Dim>(d, run, point, j), j, lanes, b);
 }
 
 /// ω of a group for the Gaussian influence, exp(−ξ²/δ²) (Highway's Exp: within a few ulp of std::exp);
