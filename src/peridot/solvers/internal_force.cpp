@@ -258,8 +258,9 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
 }
 
 // The vectorised loops of PMB and LPS in 2D and 3D (every influence function), written once for every target with
-// core/simd_bonds.hpp: the partners' x and u loaded whole and transposed, the lengths from reciprocal_sqrt
-// (no square root or division per bond where the target has an estimate), a group of bonds per lane count,
+// core/simd_bonds.hpp: the partners' x and u loaded whole and transposed, the lengths from simd_bonds::lengths
+// (AVX-512's 1/√x estimate, no square root or division; elsewhere two square roots and one division per
+// bond), a group of bonds per lane count,
 // the bond list read in place (a run with broken bonds: the list of its intact bonds, IntactBonds, so broken
 // bonds cost nothing, as in LAMMPS) and the flags of bonds that break set where they break. |ξ| and |Y| are
 // within about 1 ulp of the square roots, and a bond at rest still has e = |Y| − |ξ| = 0 exactly (the same
