@@ -281,7 +281,7 @@ using IntactScratch = sb::IntactBonds;
 enum class FailureCheck { none, before_force, after_force };
 
 /// The check a pass runs, from the run's limits (SameBlockRun): none where they are +∞.
-inline FailureCheck failure_check(const SameBlockRun& run) {
+[[maybe_unused]] inline FailureCheck failure_check(const SameBlockRun& run) {
   if (run.break_limit == std::numeric_limits<double>::infinity()) return FailureCheck::none;
   return run.drop_limit == run.break_limit ? FailureCheck::before_force : FailureCheck::after_force;
 }
