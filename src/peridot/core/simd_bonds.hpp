@@ -8,7 +8,8 @@
 //   - lengths: |ξ|, |Y| and 1/(|ξ||Y|). AVX-512 has a 14-bit estimate of 1/√x for doubles, refined by
 //     two Newton steps, which keeps the bond loops off the divider. AVX2 has only the 12-bit single-precision
 //     estimate: narrowing, estimating and three Newton steps made the AVX2 PMB loop 1.5× slower than two
-//     square roots and a division on AMD Zen 5 (bench_explicit, 50 k points), so the other targets divide.
+//     square roots and two divisions, 1.9× slower than two square roots and one division (what the other
+//     targets do) on AMD Zen 5 (bench_explicit, 37³ points).
 //   - load_tensor: the same for 3×3 tensors (9 doubles per point).
 //   - sum_lanes: the lanes' sum in a fixed order per target (the same bits for any thread count).
 // Per-target include guard (Highway's convention): a foreach_target file includes this once per target,
