@@ -66,10 +66,10 @@ struct RunScratch {
   }
 };
 
-/// Where a weighted loop (the correspondence kinematics and force) reads the bonds of a run. The AVX-512
-/// loops (core/avx512_gather.hpp) read the bond list in place: the run's neighbours, broken flags and
-/// weights, `count` = the run's length, the last group masked. The portable loops read this thread's
-/// RunScratch: neighbours and weights (0 where broken), `count` padded, `broken` unused.
+/// Where a weighted loop (the correspondence kinematics and force) reads the bonds of a run. With AVX-512
+/// the loops read the bond list in place: the run's neighbours, broken flags and weights, `count` = the
+/// run's length, the last group masked. The other targets read this thread's RunScratch: neighbours and
+/// weights (0 where broken), `count` padded to whole groups, `broken` unused.
 struct WeightedRun {
   const std::uint32_t* neighbor = nullptr;
   const std::uint8_t* broken = nullptr;
