@@ -45,6 +45,17 @@ using M = hn::Mask<D>;
 /// The most lanes a group has on this target (for arrays on the stack).
 constexpr std::size_t max_lanes = HWY_MAX_BYTES / sizeof(double);
 
+/// out[c] lane k = base[Width j_k + c], c < Width, through a buffer on the stack: the targets without a
+/// transposed load below.
+template <int Width>
+[[maybe_unused, gnu::always_inline]] inline void load_records(D d, const double* base, const std::uint32_t* j,
+                                                              V out[Width]) {
+  HWY_ALIGN double lanes[Width][max_lanes];
+  for (std::size_t k = 0; k < hn::Lanes(d); ++k)
+    for (int c = 0; c < Width; ++c) lanes[c][k] = base[Width * static_cast<std::uint64_t>(j[k]) + c];
+  for (int c = 0; c < Width; ++c) out[c] = hn::Load(d, lanes[c]);
+}
+
 /// out[c] lane k = base[3 j_k + c], c < 3, for the Lanes(d) indices of `j`; nothing past the last point's
 /// record is read.
 [[gnu::always_inline]] inline void load_vec3(D d, const double* base, const std::uint32_t* j, V out[3]) {
@@ -72,10 +83,7 @@ constexpr std::size_t max_lanes = HWY_MAX_BYTES / sizeof(double);
   out[1] = V{_mm_unpackhi_pd(xy_a, xy_b)};
   out[2] = V{_mm_loadh_pd(_mm_load_sd(a + 2), b + 2)};
 #else
-  HWY_ALIGN double lanes[3][max_lanes];
-  for (std::size_t k = 0; k < hn::Lanes(d); ++k)
-    for (int c = 0; c < 3; ++c) lanes[c][k] = base[3 * static_cast<std::uint64_t>(j[k]) + c];
-  for (int c = 0; c < 3; ++c) out[c] = hn::Load(d, lanes[c]);
+  load_records<3>(d, base, j, out);
 #endif
 }
 
@@ -103,10 +111,7 @@ constexpr std::size_t max_lanes = HWY_MAX_BYTES / sizeof(double);
   }
   out[8] = V{_mm256_setr_pd(r[0][8], r[1][8], r[2][8], r[3][8])};
 #else
-  HWY_ALIGN double lanes[9][max_lanes];
-  for (std::size_t k = 0; k < hn::Lanes(d); ++k)
-    for (int c = 0; c < 9; ++c) lanes[c][k] = base[9 * static_cast<std::uint64_t>(j[k]) + c];
-  for (int c = 0; c < 9; ++c) out[c] = hn::Load(d, lanes[c]);
+  load_records<9>(d, base, j, out);
 #endif
 }
 
