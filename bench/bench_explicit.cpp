@@ -7,7 +7,7 @@
 //
 //   bench_explicit --model lps --n 58 58 60 --steps 200 [--threads 1] [--critical-stretch 1e-4]
 //                  [--dump final.txt]
-//   --model lps_plastic [--yield-stress 1e6]   (a small σ_y makes every point flow: the costly case)
+//   --model lps_plastic [--yield-stress 1e4]   (a small σ_y makes the block flow: the costly case)
 //   --model lps_viscoelastic                   (λ_i = 0.5, τ_b = 10 µs)
 //   --model correspondence [--law j2|hypoelastic] [--yield-stress 1e4]
 //                                              (Foster's J2 law, n = 13.5, m = 44, with the block's E and ν;

@@ -31,7 +31,7 @@ def cases(n, n2d):
         ("lps 3D gaussian", ["--model", "lps", "--influence", "gaussian", *cube]),
         ("pmb 2D", ["--model", "pmb", *plate]),
         ("lps 2D", ["--model", "lps", *plate]),
-        ("lps_plastic 3D", ["--model", "lps_plastic", "--yield-stress", "1e6", *cube]),
+        ("lps_plastic 3D", ["--model", "lps_plastic", "--yield-stress", "1e4", *cube]),
         ("lps_viscoelastic 3D", ["--model", "lps_viscoelastic", *cube]),
         ("correspondence 3D hypoelastic", ["--model", "correspondence", "--law", "hypoelastic", *cube]),
     ]

@@ -51,7 +51,6 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
   const double* up = u.data();
   const BondList& bonds = *ctx.bonds;
   const double* plastic_extension = history.bond[0].data();
-  const double H = p.hardening_modulus;
   with_dimension(ctx.disc->dimension, [&](auto dim) {
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
@@ -73,22 +72,29 @@ void LpsPlastic::prepare(const ModelContext& ctx, const VectorField& u, const st
         weighted += t * t / omega * v;
         along += omega * g.xi * elastic * v;
       }
-      const double norm = std::sqrt(norm2);
-      const double k = ctx.point_constants[0][i];  // (C)
-      const double yield_n = p.yield_stress + H * history.plastic_strain[i];
-      if (!(norm > k * yield_n)) {  // elastic (also a point without intact bonds)
-        history.point[yield_scale][i] = 1;
-        history.point[plastic_strain_increment][i] = 0;
-        history.point[deviatoric_moment][i] = along * ctx.inverse_weighted_volume[i];
-        continue;
-      }
-      const double g = k * weighted / (alpha * norm);
-      const double increment = g * (1 - k * yield_n / norm) / (1 + g * k * H / norm);  // (P5)
-      history.point[plastic_strain_increment][i] = increment;
-      history.point[yield_scale][i] = k * (yield_n + H * increment) / norm;
-      history.point[deviatoric_moment][i] = history.point[yield_scale][i] * along * ctx.inverse_weighted_volume[i];
+      finish_return_map(ctx, history, p, i, norm2, weighted, along);
     }
   });
+}
+
+void LpsPlastic::finish_return_map(const ModelContext& ctx, MaterialHistory& history, const Params& p, std::size_t i,
+                                   double norm2, double weighted, double along) {
+  const double H = p.hardening_modulus;
+  const double alpha = p.alpha_deviatoric * ctx.inverse_weighted_volume[i];
+  const double norm = std::sqrt(norm2);
+  const double k = ctx.point_constants[0][i];  // (C)
+  const double yield_n = p.yield_stress + H * history.plastic_strain[i];
+  if (!(norm > k * yield_n)) {  // elastic (also a point without intact bonds)
+    history.point[yield_scale][i] = 1;
+    history.point[plastic_strain_increment][i] = 0;
+    history.point[deviatoric_moment][i] = along * ctx.inverse_weighted_volume[i];
+    return;
+  }
+  const double g = k * weighted / (alpha * norm);
+  const double increment = g * (1 - k * yield_n / norm) / (1 + g * k * H / norm);  // (P5)
+  history.point[plastic_strain_increment][i] = increment;
+  history.point[yield_scale][i] = k * (yield_n + H * increment) / norm;
+  history.point[deviatoric_moment][i] = history.point[yield_scale][i] * along * ctx.inverse_weighted_volume[i];
 }
 
 void LpsPlastic::commit(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
@@ -110,15 +116,19 @@ void LpsPlastic::commit(const ModelContext& ctx, const VectorField& u, const std
         const double plastic = plastic_extension[b] + released * g.xi;  // (P8)
         plastic_extension[b] = plastic + (1 - r) * (ed - plastic);      // (P4)
       }
-      history.point[released_extension][i] = 0;
-      const double increment = history.point[plastic_strain_increment][i];
-      history.plastic_strain[i] += increment;
-      // W_p increment = σ_Y,n+1 Δε̄p (P5)
-      history.dissipation[i] += (p.yield_stress + p.hardening_modulus * history.plastic_strain[i]) * increment;
-      history.point[yield_scale][i] = 1;
-      history.point[plastic_strain_increment][i] = 0;
+      finish_commit(history, p, i);
     }
   });
+}
+
+void LpsPlastic::finish_commit(MaterialHistory& history, const Params& p, std::size_t i) {
+  history.point[released_extension][i] = 0;
+  const double increment = history.point[plastic_strain_increment][i];
+  history.plastic_strain[i] += increment;
+  // W_p increment = σ_Y,n+1 Δε̄p (P5)
+  history.dissipation[i] += (p.yield_stress + p.hardening_modulus * history.plastic_strain[i]) * increment;
+  history.point[yield_scale][i] = 1;
+  history.point[plastic_strain_increment][i] = 0;
 }
 
 // The page of `peridot info --model lps_plastic` (docs/models/lps_plastic.md). The equations restate the

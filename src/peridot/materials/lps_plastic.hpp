@@ -112,6 +112,12 @@ struct LpsPlastic : ModelBase {
   /// Reads the history, writes only this step's scratch, so it may run any number of times.
   static void prepare(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                       MaterialHistory& history, const MaterialParams& block, const Params& p, BlockRange range);
+  /// The return map of point i from the sums of prepare over its intact bonds: ‖t^d_tr‖² = Σ (t^d_tr)² V,
+  /// S = Σ (t^d_tr)²/ω V and Σ ω ξ (e^d − e^dp_n) V. (The vectorised bond loops call it too.)
+  static void finish_return_map(const ModelContext& ctx, MaterialHistory& history, const Params& p, std::size_t i,
+                                double norm2, double weighted, double along);
+  /// What commit does for point i after its bonds' e^dp: ε̄p and W_p advance, the step's scratch is reset.
+  static void finish_commit(MaterialHistory& history, const Params& p, std::size_t i);
   /// Makes the step final: e^dp, ε̄p and W_p advance with the scratch of prepare, which is reset.
   static void commit(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                      MaterialHistory& history, const MaterialParams& block, const Params& p, BlockRange range, double dt);

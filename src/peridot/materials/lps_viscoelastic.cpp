@@ -39,8 +39,7 @@ void LpsViscoelastic::commit(const ModelContext& ctx, const VectorField& u, cons
   double* back = history.bond[0].data();
   double* previous = history.bond[1].data();
   const double tau = p.relaxation_time;
-  // 1 − ε and 1 − ε² with expm1, so that Δt ≪ τ_b keeps its digits.
-  const double one_minus_decay = -std::expm1(-dt / tau), one_minus_decay2 = -std::expm1(-2 * dt / tau);
+  const MaxwellStep maxwell(tau, dt);
   with_dimension(ctx.disc->dimension, [&](auto dim) {
     constexpr int Dim = decltype(dim)::value;
 #pragma omp parallel for schedule(static)
@@ -53,8 +52,7 @@ void LpsViscoelastic::commit(const ModelContext& ctx, const VectorField& u, cons
         const BondGeometry<Dim> g = bond_geometry<Dim>(x, up, i, j);
         const double ed = mechanical_extension(ctx, i, g) - theta[i] * g.xi * p.inverse_dilatation_factor;
         if (dt > 0) {  // (V4)
-          const double integral = maxwell_square_integral((ed - previous[b]) / dt, previous[b] - back[b], tau, dt,
-                                                          one_minus_decay, one_minus_decay2);
+          const double integral = maxwell.integral((ed - previous[b]) / dt, previous[b] - back[b]);
           dissipated += dashpot * influence(block.influence, g.xi, block.horizon) * integral * neighbor_volume(ctx, i, j, g.xi);
         }
         back[b] = back_extension(p, s, b, ed);  // reads bond b only, then overwrites it

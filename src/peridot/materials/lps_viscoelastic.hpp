@@ -10,7 +10,7 @@
 //        — unconditionally stable: the viscous part sets no limit on Δt.
 //   (V4) dissipation density of the dashpots, integrated exactly for the same e^d(t): with z = e^d − e^b,
 //        ż = ė^d − z/τ_b, D = Σ (λ_i α_d ω/(m τ_b)) ∫ z² dt V; over a step with ė^d = ρ and z_n,
-//        ∫ z² dt = (ρτ)²Δt + 2ρτ²(z_n − ρτ)(1 − ε) + (z_n − ρτ)² (τ/2)(1 − ε²).
+//        ∫ z² dt = z_n² (τ/2)(1 − ε²) + z_n ρ τ²(1 − ε)² + ρ²τ³ g(Δt/τ) (materials/maxwell_element.hpp).
 //   (V5) stored energy W = α_v θ²/(2n) + (α_d/2m) Σ ω [(1 − λ_i)(e^d)² + λ_i (e^d − e^b)²] V.
 // λ_i = 0 is the elastic LPS; λ_i = 1 relaxes the shear completely (a nonlocal Maxwell fluid in shear).
 // History: MaterialHistory::bond[0] = e^b and bond[1] = e^d of the last completed step, per bond;

@@ -304,12 +304,12 @@ void Thermoviscoelastic::commit(const ModelContext& ctx, const VectorField& u, c
 #pragma omp parallel for schedule(static)
     for (std::size_t i = range.begin; i < range.end; ++i) {
       const double a_T = shift[i - range.begin];
-      std::array<double, max_terms> decay{}, ramp{}, tau{}, one_minus_decay{}, one_minus_decay2{};
+      std::array<double, max_terms> decay{}, ramp{}, tau{};
+      std::array<MaxwellStep, max_terms> maxwell{};
       step_factors(p, dt, a_T, decay, ramp);
       for (int k = 0; k < n; ++k) {
         tau[k] = a_T * p.relaxation_time[k];
-        one_minus_decay[k] = -std::expm1(-dt / tau[k]);
-        one_minus_decay2[k] = -std::expm1(-2 * dt / tau[k]);
+        maxwell[k] = MaxwellStep(tau[k], dt);
       }
       // Per term: δ Σ (∫x²dt)/|ξ| V, δ Σ x_n/|ξ| V (x = e − e^v_k) and δ Σ e^v_k,n+1/|ξ| V; δ Σ ρ/|ξ| V.
       std::array<double, max_terms> square{}, spring_sum{}, viscous_sum{};
@@ -325,7 +325,7 @@ void Thermoviscoelastic::commit(const ModelContext& ctx, const VectorField& u, c
         for (int k = 0; k < n; ++k) {
           double& ev = history.bond[3 + k][b];
           const double spring = previous[b] - ev;
-          if (dt > 0) square[k] += anisotropy[b] * weight * maxwell_square_integral(rate, spring, tau[k], dt, one_minus_decay[k], one_minus_decay2[k]);
+          if (dt > 0) square[k] += anisotropy[b] * weight * maxwell[k].integral(rate, spring);
           spring_sum[k] += weight * spring;
           ev = decay[k] * ev + (1 - decay[k] - ramp[k]) * previous[b] + ramp[k] * e;  // (M3)
           viscous_sum[k] += weight * ev;
@@ -336,7 +336,7 @@ void Thermoviscoelastic::commit(const ModelContext& ctx, const VectorField& u, c
       double dissipated = 0;
       for (int k = 0; k < n && dt > 0; ++k) {  // (M6): (2 g b_k/τ_k)[δ Σ ∫x²/|ξ| V − r ∫θ(x)² dt], θ(x) = d × the sums
         const double theta_square =
-            maxwell_square_integral(d * rate_sum, d * spring_sum[k], tau[k], dt, one_minus_decay[k], one_minus_decay2[k]);
+            maxwell[k].integral(d * rate_sum, d * spring_sum[k]);
         dissipated += 2 * g * p.bond_modulus[k] / tau[k] * (square[k] - r * theta_square);
       }
       history.dissipation[i] += dissipated;

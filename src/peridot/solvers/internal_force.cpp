@@ -10,6 +10,7 @@
 #include "peridot/core/error.hpp"
 #include "peridot/damage/critical_stretch.hpp"
 #include "peridot/materials/bond_loop.hpp"
+#include "peridot/materials/maxwell_element.hpp"
 #include "peridot/core/simd.hpp"
 #include "peridot/state/bond_runs.hpp"
 
@@ -257,7 +258,8 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
   f[0] = fx, f[1] = fy, f[2] = fz;
 }
 
-// The vectorised loops of PMB and LPS in 2D and 3D (every influence function), written once for every target with
+// The vectorised loops of PMB, LPS, lps_plastic and lps_viscoelastic in 2D and 3D (every influence function;
+// the two inelastic models' return map and commit too), written once for every target with
 // core/simd_bonds.hpp: the partners' x and u loaded whole and transposed, the lengths from simd_bonds::lengths
 // (AVX-512's 1/√x estimate, no square root or division; elsewhere two square roots and one division per
 // bond), a group of bonds per lane count,
@@ -266,7 +268,11 @@ template <int Dim, class Model, bool CheckFailure, InfluenceKind Influence, bool
 // within about 1 ulp of the square roots, and a bond at rest still has e = |Y| − |ξ| = 0 exactly (the same
 // operations on the same bits), so the answers differ from the portable loops' by round-off. The
 // cancellation-free e = η·(2ξ + η)/(|Y| + |ξ|), η = u_j − u_i, cost 3–15 % of the AVX-512 PMB loop in two
-// runs and is not used. The scalar target has one lane: it keeps the portable loops above.
+// runs and is not used. The scalar target has one lane: it keeps the portable loops above. The inelastic
+// models read their per-bond history in place (IntactRun::bond_values) and the partner bond's through the
+// reverse index (a gather from another family's bonds: half of lps_plastic's force loop, 37³ points, AVX-512,
+// Zen 5; a prefetch four groups ahead took back about a third of it there, and nothing for lps_viscoelastic's
+// two arrays).
 constexpr bool vector_loops = HWY_TARGET != HWY_SCALAR && HWY_TARGET != HWY_EMU128;
 PERIDOT_SIMD_BONDS_BEGIN
 
@@ -312,12 +318,57 @@ struct IntactRun {
   std::uint8_t* broken;  ///< the run's flags (b_begin on)
   const std::uint32_t* position = nullptr;  ///< listed bond → its place in the run (nullptr: in place)
 
+  std::uint64_t first;  ///< the run's first bond in the bond list
+
   IntactRun(const SameBlockRun& run, const std::uint32_t* neighbors, std::uint8_t* flags, IntactScratch& list)
-      : neighbor(neighbors + run.b_begin), count(run.b_end - run.b_begin), broken(flags + run.b_begin) {
+      : neighbor(neighbors + run.b_begin), count(run.b_end - run.b_begin), broken(flags + run.b_begin),
+        first(run.b_begin) {
     // Without broken bonds the list would be the run itself: the same lanes and bits either way.
     if (list.compact(neighbor, broken, count))
       neighbor = list.neighbor.data(), count = list.count, position = list.position.data();
   }
+
+  /// array[bond] of the group's listed bonds b …, bond their index in the bond list (per-bond history); 0 in
+  /// the lanes past the list. Read in place while no bond of the run is broken and the group is whole.
+  [[gnu::always_inline]] V bond_values(D d, const double* array, std::uint64_t b) const {
+    if (!position && b + hn::Lanes(d) <= count) return hn::LoadU(d, array + first + b);
+    HWY_ALIGN double lanes[sb::max_lanes] = {};
+    for (std::uint64_t k = 0; k < hn::Lanes(d) && b + k < count; ++k) lanes[k] = array[first + place(b + k)];
+    return hn::Load(d, lanes);
+  }
+
+  /// The partner bonds j → i (`reverse`) of the group's listed bonds b …, as gather indices (0 past the list).
+  [[gnu::always_inline]] hn::Vec<hn::RebindToSigned<D>> partner_bonds(D d, const std::uint32_t* reverse,
+                                                                       std::uint64_t b) const {
+    const hn::RebindToSigned<D> di;
+    if (!position && b + hn::Lanes(d) <= count) {
+      const hn::Rebind<std::uint32_t, D> d32;
+      return hn::BitCast(di, hn::PromoteTo(hn::RebindToUnsigned<D>(), hn::LoadU(d32, reverse + first + b)));
+    }
+    HWY_ALIGN std::int64_t lanes[sb::max_lanes] = {};
+    for (std::uint64_t k = 0; k < hn::Lanes(d) && b + k < count; ++k) lanes[k] = reverse[first + place(b + k)];
+    return hn::Load(di, lanes);
+  }
+
+  /// array[bond] = v for the group's listed bonds b … in `lanes` (the inverse of bond_values).
+  [[gnu::always_inline]] void store_bond_values(D d, double* array, std::uint64_t b, V v, M lanes) const {
+    if (!position && b + hn::Lanes(d) <= count && hn::AllTrue(d, lanes)) return hn::StoreU(v, d, array + first + b);
+    HWY_ALIGN double values[sb::max_lanes];
+    hn::Store(v, d, values);
+    for (unsigned m = sb::mask_bits(d, lanes); m != 0; m &= m - 1) {
+      const unsigned k = static_cast<unsigned>(__builtin_ctz(m));
+      array[first + place(b + k)] = values[k];
+    }
+  }
+
+  /// Prefetches array[reverse[bond]] for the listed bonds b … b + Lanes − 1 that exist.
+  [[gnu::always_inline]] void prefetch_partners(D d, const double* array, const std::uint32_t* reverse,
+                                                std::uint64_t b) const {
+    for (std::uint64_t k = b; k < b + hn::Lanes(d) && k < count; ++k) __builtin_prefetch(array + reverse[first + place(k)]);
+  }
+
+  /// The place in the run of listed bond k.
+  [[gnu::always_inline]] std::uint64_t place(std::uint64_t k) const { return position ? position[k] : k; }
 
   /// Sets the flags of the group's bonds b … in `breaking`. Only when a bond breaks: a masked store, even
   /// of no lane, stalls a later load of the same bytes (no store-to-load forwarding from masked stores);
@@ -444,7 +495,7 @@ template <int Dim, FailureCheck Check, class Carried>
   V fx = hn::Zero(d), fy = fx, fz = fx;
   for_each_group<Dim>(d, run, point, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, M lanes,
                                                 std::uint64_t b) __attribute__((always_inline)) {
-    const V carried = carried_of(g, j);
+    const V carried = carried_of(g, j, b);
     M breaking;
     const M carries = carrying_lanes<Check>(d, lanes, g, break_limit, breaking);
     bonds.mark_broken(d, breaking, b);
@@ -463,7 +514,8 @@ void run_force_pmb_vector(const SameBlockRun& run, const MaterialParams& p, cons
   const PartnerVolume volume(
       d, run, Influence == InfluenceKind::inverse_distance ? mp.micromodulus * p.horizon : mp.micromodulus, p.horizon);
   const V minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
-  sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j) __attribute__((always_inline)) {
+  sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, std::uint64_t)
+                                                  __attribute__((always_inline)) {
     const V cv = volume(d, run, j, g.xi);
     // ω/(|ξ||Y|): 1/(|ξ|²|Y|) = |Y|/(|ξ||Y|)², δ being in c; 1/(|ξ||Y|); exp(−ξ²/δ²)/(|ξ||Y|)
     V weight = g.inverse_product;
@@ -474,10 +526,10 @@ void run_force_pmb_vector(const SameBlockRun& run, const MaterialParams& p, cons
 }
 
 /// LPS dilatation sum Σ ω ξ e V_j over point i's run (δ of the 1/|ξ| influence in the volume constant), and
-/// what the bonds that break now took out of it.
-template <int Dim, InfluenceKind Influence, FailureCheck Check>
-void run_dilatation_lps_vector(const SameBlockRun& run, const MaterialParams& p, std::size_t i, const IntactRun& bonds,
-                               double& sum_out, double& lost_out) {
+/// what the bonds that break now took out of it; for lps_plastic Σ ω ξ (e − e^dp) V_j (its (P7)).
+template <int Dim, class Model, InfluenceKind Influence, FailureCheck Check>
+void run_dilatation_lps_vector(const SameBlockRun& run, const MaterialParams& p, const KernelFields& s, std::size_t i,
+                               const IntactRun& bonds, double& sum_out, double& lost_out) {
   static_assert(Check != FailureCheck::after_force, "the dilatation pass checks before the force");
   const D d;
   const PointI point(d, run, i);
@@ -487,8 +539,10 @@ void run_dilatation_lps_vector(const SameBlockRun& run, const MaterialParams& p,
   for_each_group<Dim>(d, run, point, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, M lanes,
                                                 std::uint64_t b) __attribute__((always_inline)) {
     const V cv = volume(d, run, j, g.xi);
+    V e = g.e;
+    if constexpr (std::is_same_v<Model, LpsPlastic>) e = e - bonds.bond_values(d, s.bond[0], b);
     // ω ξ: δ (in cv), ξ, or exp(−ξ²/δ²) ξ
-    V term = (Influence == InfluenceKind::inverse_distance ? g.e : g.e * g.xi) * cv;
+    V term = (Influence == InfluenceKind::inverse_distance ? e : e * g.xi) * cv;
     if constexpr (Influence == InfluenceKind::gaussian) term = gaussian_influence(d, g, minus_inverse_h2) * term;
     M breaking;
     const M counts = carrying_lanes<Check>(d, lanes, g, break_limit, breaking);
@@ -512,7 +566,8 @@ void run_force_lps_vector(const SameBlockRun& run, const MaterialParams& p, cons
   const V alpha_d = hn::Set(d, mp.alpha_deviatoric), beta_v = hn::Set(d, beta);
   const V a_i = hn::Set(d, s.inverse_m[i]), a_theta_i = hn::Set(d, s.inverse_m[i] * s.theta[i]);
   const V minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
-  sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j) __attribute__((always_inline)) {
+  sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, std::uint64_t)
+                                                  __attribute__((always_inline)) {
     const V a_j = sb::gather(d, s.inverse_m, j);
     const V theta_j = sb::gather(d, s.theta, j);
     const V cv = volume(d, run, j, g.xi);
@@ -526,43 +581,215 @@ void run_force_lps_vector(const SameBlockRun& run, const MaterialParams& p, cons
   }, f);
 }
 
+/// ω/|Y| of a group, δ of the 1/|ξ| influence left to the caller's constant: |ξ|/(|ξ||Y|), 1/(|ξ||Y|) or
+/// exp(−ξ²/δ²)|ξ|/(|ξ||Y|).
+template <InfluenceKind Influence, int Dim>
+[[gnu::always_inline]] inline V influence_over_length(D d, const BondGroup<Dim>& g, V minus_inverse_h2) {
+  if constexpr (Influence == InfluenceKind::inverse_distance) return g.inverse_product;
+  const V over_length = g.xi * g.inverse_product;
+  if constexpr (Influence == InfluenceKind::gaussian) return gaussian_influence(d, g, minus_inverse_h2) * over_length;
+  return over_length;
+}
+
+/// lps_plastic force on point i from its run. LpsPlastic::force_scalar of one end, regrouped:
+/// t = ω[A e + B ξ − A e^dp], A = α_d r/m, B = (α_v θ − α_d (r(θ/n + ρ) + q))/m (r, ρ, q of the end's return
+/// map); the two ends summed, e^dp of the bond and of its partner bond (gathered through `reverse`).
+template <int Dim, InfluenceKind Influence, FailureCheck Check>
+void run_force_plastic_vector(const SameBlockRun& run, const MaterialParams& p, const LpsPlastic::Params& mp,
+                              const KernelFields& s, std::size_t i, const IntactRun& bonds, double f[3]) {
+  const D d;
+  const PartnerVolume volume(d, run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
+  const double* r = s.point[LpsPlastic::yield_scale];
+  const double* rho = s.point[LpsPlastic::released_extension];
+  const double* q = s.point[LpsPlastic::deviatoric_moment];
+  const double n_inverse = mp.inverse_dilatation_factor;
+  const auto deviatoric_of = [&](double a, double r_) { return mp.alpha_deviatoric * a * r_; };
+  const auto dilatational_of = [&](double a, double theta, double r_, double rho_, double q_) {
+    return a * (mp.alpha_volumetric * theta - mp.alpha_deviatoric * (r_ * (theta * n_inverse + rho_) + q_));
+  };
+  const V A_i = hn::Set(d, deviatoric_of(s.inverse_m[i], r[i]));
+  const V B_i = hn::Set(d, dilatational_of(s.inverse_m[i], s.theta[i], r[i], rho[i], q[i]));
+  const V alpha_d = hn::Set(d, mp.alpha_deviatoric), alpha_v = hn::Set(d, mp.alpha_volumetric);
+  const V inverse_n = hn::Set(d, n_inverse), minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
+  sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, std::uint64_t b)
+                                                  __attribute__((always_inline)) {
+    const V a_j = sb::gather(d, s.inverse_m, j), theta_j = sb::gather(d, s.theta, j);
+    const V r_j = sb::gather(d, r, j), rho_j = sb::gather(d, rho, j), q_j = sb::gather(d, q, j);
+    const V A_j = alpha_d * a_j * r_j;
+    const V B_j = a_j * (alpha_v * theta_j - alpha_d * (r_j * (theta_j * inverse_n + rho_j) + q_j));
+    bonds.prefetch_partners(d, s.bond[0], run.reverse, b + 4 * hn::Lanes(d));
+    const V plastic = bonds.bond_values(d, s.bond[0], b);
+    const V partner_plastic = hn::GatherIndex(d, s.bond[0], bonds.partner_bonds(d, run.reverse, b));
+    const V t_over_omega = (A_i + A_j) * g.e + (B_i + B_j) * g.xi - (A_i * plastic + A_j * partner_plastic);
+    return t_over_omega * volume(d, run, j, g.xi) * influence_over_length<Influence>(d, g, minus_inverse_h2);
+  }, f);
+}
+
+/// lps_viscoelastic force on point i from its run. LpsViscoelastic::force_scalar of one end, regrouped with
+/// γ = 1 − λβ and c = 1 − ε − β: t = ω[α_d γ a e + (α_v − α_d γ/n) a θ ξ − α_d λ a (ε e^b + c e^d_n)], a = 1/m;
+/// the LPS loop with α_d γ for α_d, and the history of the bond and of its partner bond.
+template <int Dim, InfluenceKind Influence, FailureCheck Check>
+void run_force_viscoelastic_vector(const SameBlockRun& run, const MaterialParams& p, const LpsViscoelastic::Params& mp,
+                                   const KernelFields& s, std::size_t i, const IntactRun& bonds, double f[3]) {
+  const D d;
+  const PartnerVolume volume(d, run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
+  const double gamma = 1 - mp.relaxing_fraction * mp.viscous_ramp;
+  const double beta = mp.alpha_volumetric - mp.alpha_deviatoric * gamma * mp.inverse_dilatation_factor;
+  const V deviatoric = hn::Set(d, mp.alpha_deviatoric * gamma), volumetric = hn::Set(d, beta);
+  const V viscous = hn::Set(d, mp.alpha_deviatoric * mp.relaxing_fraction);
+  const V decay = hn::Set(d, mp.viscous_decay), ramp = hn::Set(d, 1 - mp.viscous_decay - mp.viscous_ramp);
+  const V a_i = hn::Set(d, s.inverse_m[i]), a_theta_i = hn::Set(d, s.inverse_m[i] * s.theta[i]);
+  const V minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
+  const double* back = s.bond[0];
+  const double* previous = s.bond[1];
+  sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, std::uint64_t b)
+                                                  __attribute__((always_inline)) {
+    const V a_j = sb::gather(d, s.inverse_m, j), theta_j = sb::gather(d, s.theta, j);
+    const V history_i = decay * bonds.bond_values(d, back, b) + ramp * bonds.bond_values(d, previous, b);
+    const auto partner = bonds.partner_bonds(d, run.reverse, b);
+    const V history_j = decay * hn::GatherIndex(d, back, partner) + ramp * hn::GatherIndex(d, previous, partner);
+    const V t_over_omega = deviatoric * (a_i + a_j) * g.e + volumetric * (a_theta_i + a_j * theta_j) * g.xi -
+                           viscous * (a_i * history_i + a_j * history_j);
+    return t_over_omega * volume(d, run, j, g.xi) * influence_over_length<Influence>(d, g, minus_inverse_h2);
+  }, f);
+}
+
+/// ω of a group: 1, δ/|ξ| (as δ|Y|/(|ξ||Y|)) or exp(−ξ²/δ²).
+template <InfluenceKind Influence, int Dim>
+[[gnu::always_inline]] inline V group_influence(D d, const BondGroup<Dim>& g, V horizon, V minus_inverse_h2) {
+  if constexpr (Influence == InfluenceKind::inverse_distance) return horizon * g.length * g.inverse_product;
+  if constexpr (Influence == InfluenceKind::gaussian) return gaussian_influence(d, g, minus_inverse_h2);
+  (void)g, (void)horizon, (void)minus_inverse_h2;
+  return hn::Set(d, 1.0);
+}
+
+/// lps_viscoelastic's commit (LpsViscoelastic::commit) over point i's run: e^b and e^d of every intact bond
+/// advance (V3), and the dissipation of the step (V4) is returned.
+template <int Dim, InfluenceKind Influence>
+double run_viscous_commit_vector(const SameBlockRun& run, const MaterialParams& p, const LpsViscoelastic::Params& mp,
+                                 const KernelFields& s, std::size_t i, const IntactRun& bonds, double* back,
+                                 double* previous, double dt) {
+  const D d;
+  const PointI point(d, run, i);
+  const PartnerVolume volume(d, run, 1.0, p.horizon);
+  const double tau = mp.relaxation_time;
+  const V shift = hn::Set(d, s.theta[i] * mp.inverse_dilatation_factor);
+  const V decay = hn::Set(d, mp.viscous_decay), one_minus = hn::Set(d, 1 - mp.viscous_decay);
+  const V ramp = hn::Set(d, mp.viscous_ramp);
+  // MaxwellStep::integral with ρ = (e^d − e^d_n)/Δt, x₀ = e^d_n − e^b_n
+  const MaxwellStep maxwell = dt > 0 ? MaxwellStep(tau, dt) : MaxwellStep();
+  const V inverse_dt = hn::Set(d, dt > 0 ? 1 / dt : 0.0), start_square = hn::Set(d, maxwell.start_square);
+  const V cross = hn::Set(d, maxwell.cross), rate_square = hn::Set(d, maxwell.rate_square);
+  const V horizon = hn::Set(d, p.horizon), minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
+  V dissipated = hn::Zero(d);
+  for_each_group<Dim>(d, run, point, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, M lanes,
+                                                std::uint64_t b) __attribute__((always_inline)) {
+    const V ed = g.e - shift * g.xi;
+    const V back_n = bonds.bond_values(d, back, b), previous_n = bonds.bond_values(d, previous, b);
+    if (dt > 0) {
+      const V rate = (ed - previous_n) * inverse_dt, start = previous_n - back_n;
+      const V integral = start * start * start_square + start * rate * cross + rate * rate * rate_square;
+      const V omega_v = group_influence<Influence>(d, g, horizon, minus_inverse_h2) * volume(d, run, j, g.xi);
+      dissipated = dissipated + hn::IfThenElseZero(lanes, omega_v * integral);
+    }
+    bonds.store_bond_values(d, back, b, decay * back_n + one_minus * previous_n + ramp * (ed - previous_n), lanes);
+    bonds.store_bond_values(d, previous, b, ed, lanes);
+  });
+  return mp.relaxing_fraction * mp.alpha_deviatoric * s.inverse_m[i] / tau * sb::sum_lanes(d, dissipated);
+}
+
+/// lps_plastic's commit (LpsPlastic::commit) over point i's run, for a point whose step was not elastic or
+/// lost bonds: e^dp of every intact bond advances by (P8) and (P4).
+template <int Dim>
+void run_plastic_commit_vector(const SameBlockRun& run, const LpsPlastic::Params& mp, const KernelFields& s,
+                               std::size_t i, const IntactRun& bonds, double r, double released, double* plastic) {
+  const D d;
+  const PointI point(d, run, i);
+  const V shift = hn::Set(d, s.theta[i] * mp.inverse_dilatation_factor), rho = hn::Set(d, released);
+  const V flow = hn::Set(d, 1 - r);
+  for_each_group<Dim>(d, run, point, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t*, M lanes,
+                                                std::uint64_t b) __attribute__((always_inline)) {
+    const V ed = g.e - shift * g.xi;
+    const V before = bonds.bond_values(d, plastic, b) + rho * g.xi;  // (P8)
+    bonds.store_bond_values(d, plastic, b, before + flow * (ed - before), lanes);  // (P4)
+  });
+}
+
+/// The sums of lps_plastic's return map over point i's run (LpsPlastic::prepare): ‖t^d_tr‖² = Σ (t^d_tr)² V,
+/// S = Σ (t^d_tr)²/ω V and Σ ω ξ (e^d − e^dp_n) V, with e^d − e^dp_n = (e − e^dp_n) − (θ/n + ρ)ξ and
+/// t^d_tr = α ω (e^d − e^dp_n), α = α_d/m.
+template <int Dim, InfluenceKind Influence>
+void run_return_map_sums_vector(const SameBlockRun& run, const MaterialParams& p, const LpsPlastic::Params& mp,
+                                const KernelFields& s, std::size_t i, const IntactRun& bonds, double& norm2_out,
+                                double& weighted_out, double& along_out) {
+  const D d;
+  const PointI point(d, run, i);
+  const PartnerVolume volume(d, run, 1.0, p.horizon);
+  const V alpha = hn::Set(d, mp.alpha_deviatoric * s.inverse_m[i]);
+  const V shift = hn::Set(d, s.theta[i] * mp.inverse_dilatation_factor + s.point[LpsPlastic::released_extension][i]);
+  const V horizon = hn::Set(d, p.horizon), minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
+  V norm2 = hn::Zero(d), weighted = norm2, along = norm2;
+  for_each_group<Dim>(d, run, point, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, M lanes,
+                                                std::uint64_t b) __attribute__((always_inline)) {
+    const V omega = group_influence<Influence>(d, g, horizon, minus_inverse_h2);
+    const V elastic = (g.e - bonds.bond_values(d, s.bond[0], b)) - shift * g.xi;
+    const V omega_v = hn::IfThenElseZero(lanes, omega * volume(d, run, j, g.xi));
+    const V t = alpha * elastic;  // t^d_tr/ω
+    const V t2_omega_v = t * t * omega_v;
+    weighted = weighted + t2_omega_v;
+    norm2 = norm2 + t2_omega_v * omega;
+    along = along + omega_v * g.xi * elastic;
+  });
+  norm2_out = sb::sum_lanes(d, norm2), weighted_out = sb::sum_lanes(d, weighted), along_out = sb::sum_lanes(d, along);
+}
+
 PERIDOT_SIMD_BONDS_END
 
-/// Point i's force from its own block through a vector loop, where one applies (2D or 3D PMB or LPS, a target
-/// with more than one lane); false elsewhere, and then nothing is done. It reads
-/// and writes the bond list itself.
+/// The models with vector loops (the others take the portable loops above).
+template <class Model>
+constexpr bool has_vector_loops = std::is_same_v<Model, Pmb> || std::is_same_v<Model, Lps> ||
+                                  std::is_same_v<Model, LpsPlastic> || std::is_same_v<Model, LpsViscoelastic>;
+
+/// Point i's force from its own block through a vector loop, where one applies (2D or 3D, a model with vector
+/// loops, a target with more than one lane); false elsewhere, and then nothing is done. It reads and writes the
+/// bond list itself.
 template <int Dim, class Model>
 bool force_in_place(const SameBlockRun& run, const MaterialParams& p, const typename Model::Params& mp,
                     const KernelFields& s, std::size_t i, const std::uint32_t* neighbors, std::uint8_t* broken,
                     IntactScratch& scratch, double f[3]) {
-  if constexpr (vector_loops && (Dim == 2 || Dim == 3) && (std::is_same_v<Model, Pmb> || std::is_same_v<Model, Lps>)) {
+  if constexpr (vector_loops && (Dim == 2 || Dim == 3) && has_vector_loops<Model>) {
     return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
       const IntactRun bonds(run, neighbors, broken, scratch);
       if constexpr (std::is_same_v<Model, Pmb>)
         run_force_pmb_vector<Dim, kind.value, check.value>(run, p, mp, i, bonds, f);
-      else
+      else if constexpr (std::is_same_v<Model, Lps>)
         run_force_lps_vector<Dim, kind.value, check.value>(run, p, mp, s, i, bonds, f);
+      else if constexpr (std::is_same_v<Model, LpsPlastic>)
+        run_force_plastic_vector<Dim, kind.value, check.value>(run, p, mp, s, i, bonds, f);
+      else
+        run_force_viscoelastic_vector<Dim, kind.value, check.value>(run, p, mp, s, i, bonds, f);
     });
   }
   (void)run, (void)p, (void)mp, (void)s, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)f;
   return false;
 }
 
-/// Point i's dilatation sum from its own block through the vector LPS loop, where it applies (2D or 3D LPS, a
-/// target with more than one lane); false elsewhere, and then nothing is done.
+/// Point i's dilatation sum from its own block through the vector LPS loop, where it applies (2D or 3D, a model
+/// with vector loops and a dilatation, a target with more than one lane); false elsewhere, and then nothing is
+/// done.
 template <int Dim, class Model>
-bool dilatation_in_place(const SameBlockRun& run, const MaterialParams& p, std::size_t i,
+bool dilatation_in_place(const SameBlockRun& run, const MaterialParams& p, const KernelFields& s, std::size_t i,
                          const std::uint32_t* neighbors, std::uint8_t* broken, IntactScratch& scratch, double& sum,
                          double& lost) {
-  if constexpr (vector_loops && (Dim == 2 || Dim == 3) && std::is_same_v<Model, Lps>) {
+  if constexpr (vector_loops && (Dim == 2 || Dim == 3) && has_vector_loops<Model> && Model::uses_dilatation) {
     if (failure_check(run) == FailureCheck::after_force) return false;  // never: this pass checks before the force
     return with_check_and_influence(run, p.influence, [&](auto check, auto kind) {
       const IntactRun bonds(run, neighbors, broken, scratch);
       if constexpr (check.value != FailureCheck::after_force)
-        run_dilatation_lps_vector<Dim, kind.value, check.value>(run, p, i, bonds, sum, lost);
+        run_dilatation_lps_vector<Dim, Model, kind.value, check.value>(run, p, s, i, bonds, sum, lost);
     });
   }
-  (void)run, (void)p, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)sum, (void)lost;
+  (void)run, (void)p, (void)s, (void)i, (void)neighbors, (void)broken, (void)scratch, (void)sum, (void)lost;
   return false;
 }
 }  // namespace
@@ -609,7 +836,7 @@ void dilatation_pass(const ModelContext& ctx, const VectorField& u, std::vector<
         set_same_block_run(bonds, blocks, i, run);
         double sum = 0, lost = 0;
         const bool in_place = runs && !thermal && !scaled &&
-                              dilatation_in_place<Dim, Model>(run, p, i, neighbors, broken, intact, sum, lost);
+                              dilatation_in_place<Dim, Model>(run, p, fields, i, neighbors, broken, intact, sum, lost);
         if (runs && !in_place) {
           load_run(scratch, neighbors, broken, run);
           with_influence(p.influence, [&](auto kind) {
@@ -741,6 +968,86 @@ void force_pass(const ModelContext& ctx, const VectorField& u, const std::vector
   });
 }
 
+/// Runs point(i, run, intact bonds) for every point of a block whose families lie in it and have no temperature
+/// or quadrature weight, in parallel; false, and nothing done, for another block (its model's own loop then).
+template <class PointBody>
+bool for_each_point_run(const ModelContext& ctx, const VectorField& u, const MaterialParams& p, BlockRange range,
+                        PointBody&& point) {
+  if (!vector_loops) return false;
+  BondList& bonds = *ctx.bonds;
+  const double infinity = std::numeric_limits<double>::infinity();
+  const SameBlockRun block = block_run(ctx, u.data(), ctx.disc->block[range.begin], infinity, infinity);
+  if (!block.family_in_block || !ctx.thermal_stretch.empty() || p.quadrature.on) return false;
+  const int chunk = points_per_chunk(range);
+#pragma omp parallel
+  {
+    IntactScratch intact;
+    SameBlockRun run = block;
+#pragma omp for schedule(dynamic, chunk)
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      run.b_begin = bonds.offsets[i], run.b_end = bonds.offsets[i + 1];
+      point(i, run, IntactRun(run, bonds.neighbors.data(), bonds.broken.data(), intact));
+    }
+  }
+  return true;
+}
+
+/// The return maps of this step (ModelBase::prepare) of every block: lps_plastic's through the vector loop
+/// above where for_each_point_run applies, the others as their model does it.
+void prepare_pass(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                  MaterialHistory& history) {
+  const KernelFields fields = kernel_fields(ctx, theta, &history);
+  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
+    constexpr int Dim = decltype(dim)::value;
+    using Model = decltype(model);
+    if constexpr (vector_loops && std::is_same_v<Model, LpsPlastic>) {
+      const bool done = for_each_point_run(ctx, u, p, range, [&](std::size_t i, const SameBlockRun& run,
+                                                                 const IntactRun& bonds) {
+        double norm2 = 0, weighted = 0, along = 0;
+        with_influence(p.influence, [&](auto kind) {
+          run_return_map_sums_vector<Dim, kind.value>(run, p, mp, fields, i, bonds, norm2, weighted, along);
+        });
+        LpsPlastic::finish_return_map(ctx, history, mp, i, norm2, weighted, along);
+      });
+      if (done) return;
+    }
+    model.prepare(ctx, u, theta, history, p, mp, range);
+  });
+}
+
+/// Makes the step final (ModelBase::commit) in every block: lps_viscoelastic through the vector loop above
+/// where for_each_point_run applies, the others as their model does it.
+void commit_pass(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
+                 MaterialHistory& history, double dt) {
+  const KernelFields fields = kernel_fields(ctx, theta, &history);
+  for_each_block(ctx, [&](auto dim, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
+    constexpr int Dim = decltype(dim)::value;
+    using Model = decltype(model);
+    if constexpr (vector_loops && std::is_same_v<Model, LpsPlastic>) {
+      const bool done = for_each_point_run(ctx, u, p, range, [&](std::size_t i, const SameBlockRun& run,
+                                                                 const IntactRun& bonds) {
+        const double r = history.point[LpsPlastic::yield_scale][i];
+        const double released = history.point[LpsPlastic::released_extension][i];
+        if (r == 1 && released == 0) return;  // elastic step, no bond broke: nothing changes
+        run_plastic_commit_vector<Dim>(run, mp, fields, i, bonds, r, released, history.bond[0].data());
+        LpsPlastic::finish_commit(history, mp, i);
+      });
+      if (done) return;
+    }
+    if constexpr (vector_loops && std::is_same_v<Model, LpsViscoelastic>) {
+      const bool done = for_each_point_run(ctx, u, p, range, [&](std::size_t i, const SameBlockRun& run,
+                                                                 const IntactRun& bonds) {
+        with_influence(p.influence, [&](auto kind) {
+          history.dissipation[i] += run_viscous_commit_vector<Dim, kind.value>(
+              run, p, mp, fields, i, bonds, history.bond[0].data(), history.bond[1].data(), dt);
+        });
+      });
+      if (done) return;
+    }
+    model.commit(ctx, u, theta, history, p, mp, range, dt);
+  });
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace peridot
 HWY_AFTER_NAMESPACE();
@@ -835,18 +1142,20 @@ void start_step(const ModelContext& ctx, MaterialHistory& history, double dt) {
   });
 }
 
+HWY_EXPORT(prepare_pass);
+
 void prepare_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                      MaterialHistory& history) {
-  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
-    model.prepare(ctx, u, theta, history, p, mp, range);
-  });
+  simd::apply_environment();
+  HWY_DYNAMIC_DISPATCH(prepare_pass)(ctx, u, theta, history);
 }
+
+HWY_EXPORT(commit_pass);
 
 void commit_history(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                     MaterialHistory& history, double dt) {
-  for_each_block(ctx, [&](auto, auto model, const MaterialParams& p, const auto& mp, BlockRange range) {
-    model.commit(ctx, u, theta, history, p, mp, range, dt);
-  });
+  simd::apply_environment();
+  HWY_DYNAMIC_DISPATCH(commit_pass)(ctx, u, theta, history, dt);
 }
 
 void compute_internal_force(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
