@@ -6,8 +6,8 @@
 //
 // Written as x₀² ∫ε² + 2x₀ρτ ∫ε(1 − ε) + ρ²τ² ∫(1 − ε)², every integral in closed form and without
 // cancellation: the form a²Δt + 2aτc(1 − ε) + c²(τ/2)(1 − ε²), a = ρτ, c = x₀ − a, adds terms of size
-// ρ²τ²Δt to get about ρ²Δt³/3 when Δt ≪ τ, and lost (τ/Δt)² of its digits (1e-10 of the dissipation at
-// Δt = τ/1000, different on each SIMD target).
+// ρ²τ²Δt to get about ρ²Δt³/3 when Δt ≪ τ, and lost a factor (τ/Δt)² of its precision (errors of 1e-10 of
+// the dissipation at Δt = τ/1000, different on each SIMD target).
 #include <cmath>
 
 namespace peridot {
