@@ -129,6 +129,9 @@ struct SameBlockRun {
   double* breaking;               ///< per bond of the run: set to 1 where it breaks now, else 0
   double uniform_volume = 0;      ///< V_j of every partner in the block (ModelContext::uniform_volume), 0: read V_j
   bool family_in_block = false;   ///< ModelContext::family_in_block of the block
+  /// Per-point coefficients a model's vector force loop computes once per pass for every point (lps_plastic:
+  /// plastic_force_terms), null where there are none.
+  const double* point_terms[2] = {nullptr, nullptr};
 };
 
 /// The run of a point of `block` (its bonds still to be set, set_same_block_run), for the given limits.
@@ -591,32 +594,42 @@ template <InfluenceKind Influence, int Dim>
   return over_length;
 }
 
-/// lps_plastic force on point i from its run. LpsPlastic::force_scalar of one end, regrouped:
-/// t = ω[A e + B ξ − A e^dp], A = α_d r/m, B = (α_v θ − α_d (r(θ/n + ρ) + q))/m (r, ρ, q of the end's return
-/// map); the two ends summed, e^dp of the bond and of its partner bond (gathered through `reverse`).
-template <int Dim, InfluenceKind Influence, FailureCheck Check>
-void run_force_plastic_vector(const SameBlockRun& run, const MaterialParams& p, const LpsPlastic::Params& mp,
-                              const KernelFields& s, std::size_t i, const IntactRun& bonds, double f[3]) {
-  const D d;
-  const PartnerVolume volume(d, run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
+/// A = α_d r/m and B = (α_v θ − α_d (r(θ/n + ρ) + q))/m of lps_plastic's force (run_force_plastic_vector) for
+/// every point, owned and ghost, into terms[0, n) and terms[n, 2n): computed once per pass, so that the force
+/// loop gathers two values per partner instead of the five they are made of.
+[[maybe_unused]] void plastic_force_terms(const LpsPlastic::Params& mp, const KernelFields& s, std::size_t n,
+                                          std::vector<double>& terms) {
+  terms.resize(2 * n);
   const double* r = s.point[LpsPlastic::yield_scale];
   const double* rho = s.point[LpsPlastic::released_extension];
   const double* q = s.point[LpsPlastic::deviatoric_moment];
-  const double n_inverse = mp.inverse_dilatation_factor;
-  const auto deviatoric_of = [&](double a, double r_) { return mp.alpha_deviatoric * a * r_; };
-  const auto dilatational_of = [&](double a, double theta, double r_, double rho_, double q_) {
-    return a * (mp.alpha_volumetric * theta - mp.alpha_deviatoric * (r_ * (theta * n_inverse + rho_) + q_));
-  };
-  const V A_i = hn::Set(d, deviatoric_of(s.inverse_m[i], r[i]));
-  const V B_i = hn::Set(d, dilatational_of(s.inverse_m[i], s.theta[i], r[i], rho[i], q[i]));
-  const V alpha_d = hn::Set(d, mp.alpha_deviatoric), alpha_v = hn::Set(d, mp.alpha_volumetric);
-  const V inverse_n = hn::Set(d, n_inverse), minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
+  double* A = terms.data();
+  double* B = terms.data() + n;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = s.inverse_m[i], theta = s.theta[i];
+    A[i] = mp.alpha_deviatoric * a * r[i];
+    B[i] = a * (mp.alpha_volumetric * theta -
+                mp.alpha_deviatoric * (r[i] * (theta * mp.inverse_dilatation_factor + rho[i]) + q[i]));
+  }
+}
+
+/// lps_plastic force on point i from its run. LpsPlastic::force_scalar of one end, regrouped:
+/// t = ω[A e + B ξ − A e^dp], A = α_d r/m, B = (α_v θ − α_d (r(θ/n + ρ) + q))/m (r, ρ, q of the end's return
+/// map; A and B of every point in run.point_terms); the two ends summed, e^dp of the bond and of its partner
+/// bond (gathered through `reverse`).
+template <int Dim, InfluenceKind Influence, FailureCheck Check>
+void run_force_plastic_vector(const SameBlockRun& run, const MaterialParams& p, const LpsPlastic::Params& /*in A, B*/,
+                              const KernelFields& s, std::size_t i, const IntactRun& bonds, double f[3]) {
+  const D d;
+  const PartnerVolume volume(d, run, Influence == InfluenceKind::inverse_distance ? p.horizon : 1.0, p.horizon);
+  const double* A = run.point_terms[0];  // A and B of every point (plastic_force_terms)
+  const double* B = run.point_terms[1];
+  const V A_i = hn::Set(d, A[i]), B_i = hn::Set(d, B[i]);
+  const V minus_inverse_h2 = hn::Set(d, -1 / (p.horizon * p.horizon));
   sum_bond_forces<Dim, Check>(run, i, bonds, [&](const BondGroup<Dim>& g, const std::uint32_t* j, std::uint64_t b)
                                                   __attribute__((always_inline)) {
-    const V a_j = sb::gather(d, s.inverse_m, j), theta_j = sb::gather(d, s.theta, j);
-    const V r_j = sb::gather(d, r, j), rho_j = sb::gather(d, rho, j), q_j = sb::gather(d, q, j);
-    const V A_j = alpha_d * a_j * r_j;
-    const V B_j = a_j * (alpha_v * theta_j - alpha_d * (r_j * (theta_j * inverse_n + rho_j) + q_j));
+    const V A_j = sb::gather(d, A, j), B_j = sb::gather(d, B, j);
     bonds.prefetch_partners(d, s.bond[0], run.reverse, b + 4 * hn::Lanes(d));
     const V plastic = bonds.bond_values(d, s.bond[0], b);
     const V partner_plastic = hn::GatherIndex(d, s.bond[0], bonds.partner_bonds(d, run.reverse, b));
@@ -908,11 +921,15 @@ void force_pass(const ModelContext& ctx, const VectorField& u, const std::vector
     const BondFailure& fails = failure;
     const bool histories = any_history;
     const std::uint32_t* const partners = reverse;
+    std::vector<double> terms;  // the vector loop's per-point coefficients, where the model has some
+    if constexpr (vector_loops && std::is_same_v<Model, LpsPlastic>)
+      if (runs && !thermal) plastic_force_terms(mp, fields, ctx.disc->num_points(), terms);
 #pragma omp parallel
     {
       RunScratch scratch;
       IntactScratch intact;
       SameBlockRun run = block_run(ctx, up, blocks[range.begin], break_limit, after_force ? infinity : break_limit);
+      if (!terms.empty()) run.point_terms[0] = terms.data(), run.point_terms[1] = terms.data() + terms.size() / 2;
 #pragma omp for schedule(dynamic, chunk)
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
@@ -968,16 +985,22 @@ void force_pass(const ModelContext& ctx, const VectorField& u, const std::vector
   });
 }
 
-/// Runs point(i, run, intact bonds) for every point of a block whose families lie in it and have no temperature
-/// or quadrature weight, in parallel; false, and nothing done, for another block (its model's own loop then).
-template <class PointBody>
+/// Runs point(i, run, intact bonds) in parallel for every point of a block whose whole family lies in the
+/// block, and afterwards others(range) for each stretch of consecutive other points (interface points: the
+/// model's own loop), so that which loop a point takes depends on its family only, not on the rank count (a
+/// block-wide choice gave 3 and 4 ranks other bits than 1). False, and nothing done, for a block with a
+/// temperature field or quadrature weights (the model's own loop then). Each stretch is a parallel loop of
+/// its own: a deck with many interface points pays a few microseconds per stretch and step (per-point
+/// kernels in the models would remove that).
+template <class PointBody, class Others>
 bool for_each_point_run(const ModelContext& ctx, const VectorField& u, const MaterialParams& p, BlockRange range,
-                        PointBody&& point) {
-  if (!vector_loops) return false;
+                        PointBody&& point, Others&& others) {
+  if (!vector_loops || !ctx.thermal_stretch.empty() || p.quadrature.on) return false;
   BondList& bonds = *ctx.bonds;
+  const auto& blocks = ctx.disc->block;
   const double infinity = std::numeric_limits<double>::infinity();
-  const SameBlockRun block = block_run(ctx, u.data(), ctx.disc->block[range.begin], infinity, infinity);
-  if (!block.family_in_block || !ctx.thermal_stretch.empty() || p.quadrature.on) return false;
+  const SameBlockRun block = block_run(ctx, u.data(), blocks[range.begin], infinity, infinity);
+  std::vector<std::uint8_t> interface(block.family_in_block ? 0 : range.end - range.begin, 0);
   const int chunk = points_per_chunk(range);
 #pragma omp parallel
   {
@@ -985,9 +1008,23 @@ bool for_each_point_run(const ModelContext& ctx, const VectorField& u, const Mat
     SameBlockRun run = block;
 #pragma omp for schedule(dynamic, chunk)
     for (std::size_t i = range.begin; i < range.end; ++i) {
-      run.b_begin = bonds.offsets[i], run.b_end = bonds.offsets[i + 1];
+      set_same_block_run(bonds, blocks, i, run);
+      if (run.b_begin != bonds.offsets[i] || run.b_end != bonds.offsets[i + 1]) {
+        interface[i - range.begin] = 1;
+        continue;
+      }
       point(i, run, IntactRun(run, bonds.neighbors.data(), bonds.broken.data(), intact));
     }
+  }
+  for (std::size_t k = 0; k < interface.size();) {
+    if (!interface[k]) {
+      ++k;
+      continue;
+    }
+    std::size_t end = k;
+    while (end < interface.size() && interface[end]) ++end;
+    others(BlockRange{range.begin + k, range.begin + end});
+    k = end;
   }
   return true;
 }
@@ -1008,7 +1045,7 @@ void prepare_pass(const ModelContext& ctx, const VectorField& u, const std::vect
           run_return_map_sums_vector<Dim, kind.value>(run, p, mp, fields, i, bonds, norm2, weighted, along);
         });
         LpsPlastic::finish_return_map(ctx, history, mp, i, norm2, weighted, along);
-      });
+      }, [&](BlockRange stretch) { model.prepare(ctx, u, theta, history, p, mp, stretch); });
       if (done) return;
     }
     model.prepare(ctx, u, theta, history, p, mp, range);
@@ -1031,7 +1068,7 @@ void commit_pass(const ModelContext& ctx, const VectorField& u, const std::vecto
         if (r == 1 && released == 0) return;  // elastic step, no bond broke: nothing changes
         run_plastic_commit_vector<Dim>(run, mp, fields, i, bonds, r, released, history.bond[0].data());
         LpsPlastic::finish_commit(history, mp, i);
-      });
+      }, [&](BlockRange stretch) { model.commit(ctx, u, theta, history, p, mp, stretch, dt); });
       if (done) return;
     }
     if constexpr (vector_loops && std::is_same_v<Model, LpsViscoelastic>) {
@@ -1041,7 +1078,7 @@ void commit_pass(const ModelContext& ctx, const VectorField& u, const std::vecto
           history.dissipation[i] += run_viscous_commit_vector<Dim, kind.value>(
               run, p, mp, fields, i, bonds, history.bond[0].data(), history.bond[1].data(), dt);
         });
-      });
+      }, [&](BlockRange stretch) { model.commit(ctx, u, theta, history, p, mp, stretch, dt); });
       if (done) return;
     }
     model.commit(ctx, u, theta, history, p, mp, range, dt);
