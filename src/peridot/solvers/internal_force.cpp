@@ -1052,8 +1052,8 @@ void prepare_pass(const ModelContext& ctx, const VectorField& u, const std::vect
   });
 }
 
-/// Makes the step final (ModelBase::commit) in every block: lps_viscoelastic through the vector loop above
-/// where for_each_point_run applies, the others as their model does it.
+/// Makes the step final (ModelBase::commit) in every block: lps_plastic's and lps_viscoelastic's through the
+/// vector loops above where for_each_point_run applies, the others as their model does it.
 void commit_pass(const ModelContext& ctx, const VectorField& u, const std::vector<double>& theta,
                  MaterialHistory& history, double dt) {
   const KernelFields fields = kernel_fields(ctx, theta, &history);
