@@ -22,7 +22,7 @@ struct Case {
   std::string model;
   int dimension;
   InfluenceKind influence;
-  double yield_stress = 1e12;  ///< lps_plastic: 1e12 stays elastic, 1e5 yields everywhere
+  double yield_stress = 1e12;  ///< lps_plastic: 1e12 stays elastic, 1e5 yields (asserted)
   int committed_steps = 0;     ///< steps committed before the force compared (history that is not zero)
 };
 
