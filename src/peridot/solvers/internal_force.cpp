@@ -386,7 +386,7 @@ struct IntactRun {
 #endif
     for (unsigned m = sb::mask_bits(d, breaking); m != 0; m &= m - 1) {
       const std::uint64_t k = b + static_cast<unsigned>(__builtin_ctz(m));
-      broken[position ? position[k] : k] = 1;
+      broken[place(k)] = 1;
     }
   }
 };
