@@ -93,31 +93,44 @@ def main():
     # The implicit solver (PETSc): the same bits on 2 threads and under mpirun -np 1 as serial; on 2 and 3 ranks
     # the Krylov reductions and the preconditioner (ILU blocks, GAMG's aggregates) follow the partition, so the
     # equilibria agree to the solver's tolerances: the same bonds break, reactions and energies within 1e-8 (measured: 1e-12).
-    implicit = os.path.join(a.source, "tests", "regression", "decks", "implicit_notch.yaml")
-    serial = os.path.join(a.work, "implicit_notch", "serial")
-    r = peridot(["run", "-q", "-o", serial, implicit])
-    check(r.returncode == 0, "implicit_notch: serial run" + ("" if r.returncode == 0 else "\n" + r.stderr))
-    rows = lambda d: list(csv.DictReader(open(os.path.join(d, "history.csv"))))
-    for label, args, ranks in (("2 threads", ["-t", "2"], None), ("1 rank", [], 1), ("2 ranks", [], 2), ("3 ranks", [], 3)):
-        out = os.path.join(a.work, "implicit_notch", label.replace(" ", "_"))
-        r = peridot(["run", "-q"] + args + ["-o", out, implicit], ranks=ranks)
-        if r.returncode != 0:
-            check(False, f"implicit_notch: {label}\n{r.stdout}\n{r.stderr}")
-            continue
-        if ranks is None or ranks == 1:
-            check(all(filecmp.cmp(os.path.join(serial, f), os.path.join(out, f), shallow=False)
-                      for f in ("small.e", "history.csv")), f"implicit_notch: {label}, every byte of small.e and history.csv as serial")
-            continue
-        worst = 0.0
-        same_breaks = True
-        for mine, theirs in zip(rows(out), rows(serial)):
-            same_breaks &= mine["broken_fraction"] == theirs["broken_fraction"]
-            for column in ("reaction_top_y", "strain_energy", "external_work"):
-                scale = max(abs(float(theirs[column])), 1e-300)
-                worst = max(worst, abs(float(mine[column]) - float(theirs[column])) / scale if float(theirs[column]) else 0.0)
-        check(same_breaks and worst < 1e-8 and len(rows(out)) == len(rows(serial)),
-              f"implicit_notch: {label}, the same broken bonds at every load step, reaction and energies within "
-              f"{worst:.1e} of serial (1e-8 allowed)")
+    # Each Jacobian: matrix-free (the deck), colored finite differences, and lps's exact tangent (its assembly
+    # gathers the blocks that families on other ranks add to a rank's rows).
+    notch = open(os.path.join(a.source, "tests", "regression", "decks", "implicit_notch.yaml")).read()
+    variants = {
+        "implicit_notch": notch,
+        "implicit_notch_finite_difference": notch.replace("  type: implicit\n", "  type: implicit\n  jacobian: finite_difference\n"),
+        "implicit_notch_exact": notch.replace("  type: implicit\n", "  type: implicit\n  jacobian: exact\n").replace(
+            "model: lps_plastic\n    yield_stress: 60 MPa\n    hardening_modulus: 1 GPa\n", "model: lps\n"),
+    }
+    for name, text in variants.items():
+        check(text.count("jacobian") == (name != "implicit_notch") and ("yield_stress" in text) != name.endswith("exact"),
+              f"{name}: the variant deck was made")
+        implicit = os.path.join(a.work, name + ".yaml")
+        open(implicit, "w").write(text)
+        serial = os.path.join(a.work, name, "serial")
+        r = peridot(["run", "-q", "-o", serial, implicit])
+        check(r.returncode == 0, f"{name}: serial run" + ("" if r.returncode == 0 else "\n" + r.stderr))
+        rows = lambda d: list(csv.DictReader(open(os.path.join(d, "history.csv"))))
+        for label, args, ranks in (("2 threads", ["-t", "2"], None), ("1 rank", [], 1), ("2 ranks", [], 2), ("3 ranks", [], 3)):
+            out = os.path.join(a.work, name, label.replace(" ", "_"))
+            r = peridot(["run", "-q"] + args + ["-o", out, implicit], ranks=ranks)
+            if r.returncode != 0:
+                check(False, f"{name}: {label}\n{r.stdout}\n{r.stderr}")
+                continue
+            if ranks is None or ranks == 1:
+                check(all(filecmp.cmp(os.path.join(serial, f), os.path.join(out, f), shallow=False)
+                          for f in ("small.e", "history.csv")), f"{name}: {label}, every byte of small.e and history.csv as serial")
+                continue
+            worst = 0.0
+            same_breaks = True
+            for mine, theirs in zip(rows(out), rows(serial)):
+                same_breaks &= mine["broken_fraction"] == theirs["broken_fraction"]
+                for column in ("reaction_top_y", "strain_energy", "external_work"):
+                    scale = max(abs(float(theirs[column])), 1e-300)
+                    worst = max(worst, abs(float(mine[column]) - float(theirs[column])) / scale if float(theirs[column]) else 0.0)
+            check(same_breaks and worst < 1e-8 and len(rows(out)) == len(rows(serial)),
+                  f"{name}: {label}, the same broken bonds at every load step, reaction and energies within "
+                  f"{worst:.1e} of serial (1e-8 allowed)")
 
     # Threads inside ranks: 2 ranks of 2 threads each.
     mixed = os.path.join(a.source, "tests", "regression", "decks", "mpi_mixed.yaml")

@@ -13,6 +13,7 @@
 #include "peridot/materials/bond_loop.hpp"
 #include "peridot/materials/models.hpp"
 #include "peridot/parallel/communicator.hpp"
+#include "peridot/solvers/family_tangent.hpp"
 #include "peridot/solvers/simulation.hpp"
 
 // KeySpecs are written with designated initializers that leave the other fields at their defaults on
@@ -38,8 +39,13 @@ SolverInfo NewtonKrylov::info() {
                       "Newton's quadratic convergence); bond_tangent: the assembled bond tangent itself (one "
                       "matrix–vector product per Krylov iteration; exact for pmb, whose Newton iterations then "
                       "converge quadratically; for the other models the pmb-like springs c/ξ along the deformed "
-                      "bonds, a modified Newton method converging linearly)",
-       .choices = {"matrix_free", "bond_tangent"}});
+                      "bonds, a modified Newton method converging linearly); exact: the assembled exact tangent of "
+                      "pmb and lps (lps's dilatation couples every pair of a family: a 2δ stencil, about 8 times "
+                      "the bond tangent's memory), also the preconditioner's matrix; finite_difference: the same "
+                      "2δ stencil assembled for any model by colored finite differences of the residual (one "
+                      "residual per color, some hundreds in 2D and thousands in 3D: for small problems and "
+                      "checks)",
+       .choices = {"matrix_free", "bond_tangent", "exact", "finite_difference"}});
   info.keys.push_back({.key = "linear_solver", .type = ValueType::choice, .default_yaml = "gmres",
                        .description = "Krylov method: gmres (any tangent) or cg (symmetric positive definite "
                                       "tangents: elastic models without contact)",
@@ -63,7 +69,17 @@ SolverInfo NewtonKrylov::info() {
   return info;
 }
 
-void NewtonKrylov::check(const Problem& problem, DeckContext& context) { check_static(problem, context, name); }
+void NewtonKrylov::check(const Problem& problem, DeckContext& context) {
+  check_static(problem, context, name);
+  // The exact tangent is written for pmb and lps (solvers/family_tangent.hpp).
+  if (const Parameters::Entry* jacobian = problem.solver.parameters.find("jacobian"); jacobian && jacobian->text == "exact")
+    for (const MaterialSpec& m : problem.materials)
+      if (m.model != "pmb" && m.model != "lps")
+        context.error(jacobian->pos, "solver.jacobian",
+                      fmt::format("jacobian: exact is the closed-form tangent of pmb and lps, and material '{}' is {}; "
+                                  "use finite_difference (any model, assembled) or matrix_free",
+                                  m.name, m.model));
+}
 
 // -- PETSc ----------------------------------------------------------------------------------------
 
@@ -99,11 +115,18 @@ struct NewtonKrylov::Petsc {
   MPI_Comm comm = MPI_COMM_NULL;
   Vec x = nullptr, r = nullptr, base_x = nullptr, base_r = nullptr, work = nullptr;
   Mat J = nullptr, P = nullptr;
+  MatFDColoring coloring = nullptr;  ///< jacobian: finite_difference
   SNES snes = nullptr;
   bool assembled = false;       ///< P holds K of this equilibrium
   std::vector<PetscInt> block;  ///< per point, owned then ghosts: its global block row, −1 if it has none
+  /// The 2δ stencil (jacobian exact, finite_difference): the block columns of each owned block row, sorted,
+  /// row m's from starts[m]; the first owned block row.
+  std::vector<PetscInt> starts, columns;
+  PetscInt first_row = 0;
+  std::vector<double> sums;  ///< the exact tangent of the owned rows, summed here before it goes to P
   ~Petsc() {
     SNESDestroy(&snes);
+    MatFDColoringDestroy(&coloring);
     MatDestroy(&J);
     MatDestroy(&P);
     for (Vec* v : {&x, &r, &base_x, &base_r, &work}) VecDestroy(v);
@@ -137,14 +160,23 @@ PetscErrorCode form_function(SNES, Vec x, Vec r, void* context) {
   });
 }
 
-PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
+/// R(x) for the colored finite differences of jacobian: finite_difference (not an iterate: not recorded).
+PetscErrorCode difference_function(SNES, Vec x, Vec r, void* context) {
   auto& self = *static_cast<NewtonKrylov*>(context);
   return guarded(self, [&] {
     const PetscScalar* xa = nullptr;
+    PetscScalar* ra = nullptr;
     PERIDOT_PETSC(VecGetArrayRead(x, &xa));
-    self.assemble(xa);
+    PERIDOT_PETSC(VecGetArray(r, &ra));
+    self.evaluate_residual(xa, ra, false);
+    PERIDOT_PETSC(VecRestoreArray(r, &ra));
     PERIDOT_PETSC(VecRestoreArrayRead(x, &xa));
   });
+}
+
+PetscErrorCode form_jacobian(SNES, Vec x, Mat, Mat, void* context) {
+  auto& self = *static_cast<NewtonKrylov*>(context);
+  return guarded(self, [&] { self.assemble(x); });
 }
 
 PetscErrorCode convergence_test(SNES, PetscInt iteration, PetscReal, PetscReal, PetscReal, SNESConvergedReason* reason,
@@ -164,8 +196,13 @@ static PetscErrorCode jacobian_product(Mat J, Vec v, Vec y);
 
 NewtonKrylov::NewtonKrylov(Simulation& sim)
     : QuasiStatic(sim),
-      jacobian_(sim.problem().solver.parameters.text("jacobian") == "bond_tangent" ? Jacobian::bond_tangent
-                                                                                   : Jacobian::matrix_free),
+      jacobian_([&] {
+        const std::string& text = sim.problem().solver.parameters.text("jacobian");
+        return text == "bond_tangent"        ? Jacobian::bond_tangent
+               : text == "exact"             ? Jacobian::exact
+               : text == "finite_difference" ? Jacobian::finite_difference
+                                             : Jacobian::matrix_free;
+      }()),
       linear_solver_(sim.problem().solver.parameters.text("linear_solver")),
       preconditioner_(sim.problem().solver.parameters.text("preconditioner")),
       linear_tolerance_(sim.problem().solver.parameters.number("linear_tolerance")),
@@ -207,12 +244,25 @@ void NewtonKrylov::evaluate_residual(const double* x, double* r, bool record) {
   recorded_load_ = relative.load;
 }
 
-void NewtonKrylov::assemble(const double* x) {
-  set_displacement(x);
+void NewtonKrylov::assemble(Vec x_vector) {
   Petsc& p = *petsc_;
+  if (jacobian_ == Jacobian::finite_difference) {  // sets u itself, at x and at every color's perturbation
+    PERIDOT_PETSC(MatFDColoringApply(p.P, p.coloring, x_vector, p.snes));
+    return;
+  }
+  const PetscScalar* x = nullptr;
+  PERIDOT_PETSC(VecGetArrayRead(x_vector, &x));
+  set_displacement(x);
+  if (jacobian_ == Jacobian::exact) {
+    PERIDOT_PETSC(MatZeroEntries(p.P));
+    add_family_blocks(p.P);
+    PERIDOT_PETSC(MatAssemblyBegin(p.P, MAT_FINAL_ASSEMBLY));
+    PERIDOT_PETSC(MatAssemblyEnd(p.P, MAT_FINAL_ASSEMBLY));
+  }
   // Matrix-free, K only preconditions: built once per equilibrium (and the preconditioner with it,
   // SNESSetLagPreconditioner), from the deformation at its start. As the Jacobian itself it follows x.
-  if (jacobian_ == Jacobian::bond_tangent || !p.assembled) assemble_bond_tangent();
+  if (jacobian_ == Jacobian::bond_tangent || (jacobian_ == Jacobian::matrix_free && !p.assembled))
+    assemble_bond_tangent();
   p.assembled = true;
   if (jacobian_ == Jacobian::matrix_free) {  // the base point of the finite differences: x and R(x)
     Vec r = nullptr;
@@ -225,18 +275,122 @@ void NewtonKrylov::assemble(const double* x) {
     PERIDOT_PETSC(MatAssemblyBegin(p.J, MAT_FINAL_ASSEMBLY));
     PERIDOT_PETSC(MatAssemblyEnd(p.J, MAT_FINAL_ASSEMBLY));
   }
+  PERIDOT_PETSC(VecRestoreArrayRead(x_vector, &x));
+}
+
+VectorField NewtonKrylov::unknown_components() const {
+  const std::size_t owned = sim_.num_owned();
+  VectorField unknown(sim_.discretization().num_points());
+  for (std::size_t i = 0; i < owned; ++i)
+    unknown.set(i, Vec3{active(3 * i) ? 1.0 : 0.0, active(3 * i + 1) ? 1.0 : 0.0, active(3 * i + 2) ? 1.0 : 0.0});
+  sim_.exchange_ghosts(unknown);
+  return unknown;
+}
+
+void NewtonKrylov::add_family_stencil(Mat graph) {
+  const Petsc& p = *petsc_;
+  const BondList& bonds = sim_.bonds();
+  std::vector<PetscInt> family;
+  std::vector<double> zeros;
+  // Every owned family, a fully prescribed point's too (its bonds add to its unknown partners' diagonal blocks);
+  // PETSc ignores the negative indices of points outside the system.
+  for (std::size_t i = 0; i < sim_.num_owned(); ++i) {
+    family.assign(1, p.block[i]);
+    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
+      if (!bonds.broken[b]) family.push_back(p.block[bonds.neighbors[b]]);
+    const auto n = static_cast<PetscInt>(family.size());
+    zeros.assign(family.size() * family.size(), 0.0);
+    PERIDOT_PETSC(MatSetValues(graph, n, family.data(), n, family.data(), zeros.data(), INSERT_VALUES));
+  }
+}
+
+void NewtonKrylov::add_family_blocks(Mat target) {
+  Petsc& p = *petsc_;
+  const VectorField unknown = unknown_components();
+  const double* known = unknown.data();
+  const double* u = sim_.state().u.data();
+  const ModelContext& ctx = sim_.model();
+  const std::size_t owned = sim_.num_owned(), w = static_cast<std::size_t>(width_);
+  // The owned rows are summed here, each block found in its row's sorted stencil (PETSc's own insertion, a
+  // search per scalar, took 2 s per assembly of a 1 176-point 3D lps bar); the rows of ghost points go to
+  // their owners through PETSc.
+  p.sums.assign(w * w * p.columns.size(), 0.0);
+  FamilyTangent family;
+  std::vector<PetscInt> ghost_columns;
+  std::vector<double> ghost_values;
+  const auto add_row = [&](std::size_t r, bool whole) {
+    const std::uint32_t row_point = family.points[r];
+    const PetscInt row = p.block[row_point];
+    if (row < 0) return;
+    const std::size_t n = family.points.size();
+    // Which columns of the family this row has: all (lps, or pmb's row i), else i and itself (pmb's row j).
+    const auto for_each_column = [&](auto&& f) {
+      if (whole) {
+        for (std::size_t c = 0; c < n; ++c) f(c);
+      } else {
+        f(0), f(r);
+      }
+    };
+    const auto block_value = [&](std::size_t c, std::size_t a, std::size_t b) {
+      const std::uint32_t column_point = family.points[c];  // a prescribed component's row and column are not K's
+      return known[3 * row_point + a] * known[3 * column_point + b] * family.blocks[9 * (r * n + c) + 3 * a + b];
+    };
+    if (row_point < owned) {
+      const std::size_t m = static_cast<std::size_t>(row - p.first_row);
+      const PetscInt* first = p.columns.data() + p.starts[m];
+      const PetscInt* last = p.columns.data() + p.starts[m + 1];
+      const std::size_t count = static_cast<std::size_t>(last - first);
+      double* values = p.sums.data() + w * w * static_cast<std::size_t>(p.starts[m]);
+      for_each_column([&](std::size_t c) {
+        const PetscInt column = p.block[family.points[c]];
+        if (column < 0) return;
+        const std::size_t k = static_cast<std::size_t>(std::lower_bound(first, last, column) - first);
+        for (std::size_t a = 0; a < w; ++a)
+          for (std::size_t b = 0; b < w; ++b) values[a * count * w + k * w + b] += block_value(c, a, b);
+      });
+      return;
+    }
+    ghost_columns.clear();
+    for_each_column([&](std::size_t c) { ghost_columns.push_back(p.block[family.points[c]]); });
+    const std::size_t count = ghost_columns.size();
+    ghost_values.assign(w * w * count, 0.0);
+    std::size_t k = 0;
+    for_each_column([&](std::size_t c) {
+      for (std::size_t a = 0; a < w; ++a)
+        for (std::size_t b = 0; b < w; ++b) ghost_values[a * count * w + k * w + b] = block_value(c, a, b);
+      ++k;
+    });
+    PERIDOT_PETSC(MatSetValuesBlocked(target, 1, &row, static_cast<PetscInt>(count), ghost_columns.data(),
+                                      ghost_values.data(), ADD_VALUES));  // negative columns are ignored
+  };
+  // Every owned family, a fully prescribed point's too (its bonds add to its unknown partners' diagonal blocks).
+  for (std::size_t i = 0; i < owned; ++i) {
+    family_tangent(ctx, u, i, family);
+    for (std::size_t r = 0; r < family.points.size(); ++r) add_row(r, family.coupled || r == 0);
+  }
+  // A prescribed component of an unknown point: the row d (x − ū) of the residual.
+  for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
+    const std::uint32_t i = unknown_points_[m];
+    const PetscInt* first = p.columns.data() + p.starts[m];
+    const std::size_t count = static_cast<std::size_t>(p.starts[m + 1] - p.starts[m]);
+    const std::size_t k = static_cast<std::size_t>(std::lower_bound(first, first + count, p.block[i]) - first);
+    for (std::size_t a = 0; a < w; ++a)
+      if (!active(3 * i + a))
+        p.sums[w * w * static_cast<std::size_t>(p.starts[m]) + a * count * w + k * w + a] += diagonal_[i];
+  }
+  for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
+    const PetscInt row = p.first_row + static_cast<PetscInt>(m), count = p.starts[m + 1] - p.starts[m];
+    PERIDOT_PETSC(MatSetValuesBlocked(target, 1, &row, count, p.columns.data() + p.starts[m],
+                                      p.sums.data() + w * w * static_cast<std::size_t>(p.starts[m]), ADD_VALUES));
+  }
 }
 
 void NewtonKrylov::assemble_bond_tangent() {
   Petsc& p = *petsc_;
   const Discretization& disc = sim_.discretization();
   const BondList& bonds = sim_.bonds();
-  const std::size_t owned = sim_.num_owned();
   // Which dofs of every point, ghosts included, are unknowns (their columns stay; the others' are zero).
-  VectorField unknown(disc.num_points());
-  for (std::size_t i = 0; i < owned; ++i)
-    unknown.set(i, Vec3{active(3 * i) ? 1.0 : 0.0, active(3 * i + 1) ? 1.0 : 0.0, active(3 * i + 2) ? 1.0 : 0.0});
-  sim_.exchange_ghosts(unknown);
+  const VectorField unknown = unknown_components();
   const double* X = disc.x.data();
   const double* u = sim_.state().u.data();
   const double* known = unknown.data();
@@ -344,8 +498,9 @@ void NewtonKrylov::converged_or_stop(std::int64_t iteration, int& reason) {
   if (print_iterations_ && sim_.communicator().rank() == 0) {
     PetscInt linear = 0;
     SNESGetLinearSolveIterations(petsc_->snes, &linear);
-    fmt::print("load step {}, Newton iteration {}: relative residual {:.3e} ({} Krylov iterations so far)\n",
-               sim_.state().step + 1, iteration, recorded_, linear);
+    fmt::print("load step {}, Newton iteration {}: relative residual {:.3e} ({} Krylov iterations so far{})\n",
+               sim_.state().step + 1, iteration, recorded_, linear,
+               colors_ > 0 ? fmt::format("; {} residuals per Jacobian", colors_ + 1) : "");
     std::fflush(stdout);
   }
   reason = SNES_CONVERGED_ITERATING;
@@ -420,7 +575,58 @@ void NewtonKrylov::setup() {
   PERIDOT_PETSC(MatSetSizes(p.P, n, n, global, global));
   PERIDOT_PETSC(MatSetType(p.P, MATAIJ));
   PERIDOT_PETSC(MatSetBlockSize(p.P, width_));
-  PERIDOT_PETSC(MatXAIJSetPreallocation(p.P, width_, on_rank.data(), off_rank.data(), nullptr, nullptr));
+  if (jacobian_ == Jacobian::exact || jacobian_ == Jacobian::finite_difference) {
+    // The 2δ stencil, every pair of every family: a graph of the unknown points gathered by PETSc's
+    // preallocator (which also brings the pairs of other ranks' families to this rank's rows), then P's blocks
+    // counted from its rows and laid into P as zeros (the colored finite differences color that pattern).
+    const auto points = static_cast<PetscInt>(unknown_points_.size());
+    Mat pairs = nullptr, graph = nullptr;
+    PERIDOT_PETSC(MatCreate(p.comm, &pairs));
+    PERIDOT_PETSC(MatSetSizes(pairs, points, points, global / width_, global / width_));
+    PERIDOT_PETSC(MatSetType(pairs, MATPREALLOCATOR));
+    PERIDOT_PETSC(MatSetUp(pairs));
+    add_family_stencil(pairs);
+    PERIDOT_PETSC(MatAssemblyBegin(pairs, MAT_FINAL_ASSEMBLY));
+    PERIDOT_PETSC(MatAssemblyEnd(pairs, MAT_FINAL_ASSEMBLY));
+    PERIDOT_PETSC(MatCreate(p.comm, &graph));
+    PERIDOT_PETSC(MatSetSizes(graph, points, points, global / width_, global / width_));
+    PERIDOT_PETSC(MatSetType(graph, MATAIJ));
+    PetscErrorCode code = MatPreallocatorPreallocate(pairs, PETSC_TRUE, graph);
+    MatDestroy(&pairs);
+    if (code == 0) code = MatAssemblyBegin(graph, MAT_FINAL_ASSEMBLY);
+    if (code == 0) code = MatAssemblyEnd(graph, MAT_FINAL_ASSEMBLY);
+    if (code != 0) MatDestroy(&graph);
+    check_petsc(code, "MatPreallocatorPreallocate");
+    const PetscInt first_point = first / width_, last_point = first_point + points;
+    std::vector<PetscInt>& starts = p.starts;
+    std::vector<PetscInt>& columns = p.columns;
+    p.first_row = first_point;
+    starts.assign(1, 0);
+    columns.clear();
+    for (PetscInt row = first_point; row < last_point; ++row) {
+      PetscInt count = 0;
+      const PetscInt* cols = nullptr;
+      PERIDOT_PETSC(MatGetRow(graph, row, &count, &cols, nullptr));
+      columns.insert(columns.end(), cols, cols + count);
+      starts.push_back(static_cast<PetscInt>(columns.size()));
+      const std::size_t m = static_cast<std::size_t>(row - first_point);
+      on_rank[m] = off_rank[m] = 0;
+      for (PetscInt c = 0; c < count; ++c) ++(cols[c] >= first_point && cols[c] < last_point ? on_rank[m] : off_rank[m]);
+      PERIDOT_PETSC(MatRestoreRow(graph, row, &count, &cols, nullptr));
+    }
+    MatDestroy(&graph);
+    PERIDOT_PETSC(MatXAIJSetPreallocation(p.P, width_, on_rank.data(), off_rank.data(), nullptr, nullptr));
+    std::vector<double> zeros;
+    for (PetscInt m = 0; m < points; ++m) {
+      const PetscInt row = first_point + m, count = starts[m + 1] - starts[m];
+      zeros.assign(static_cast<std::size_t>(count * width_ * width_), 0.0);
+      PERIDOT_PETSC(MatSetValuesBlocked(p.P, 1, &row, count, columns.data() + starts[m], zeros.data(), INSERT_VALUES));
+    }
+    PERIDOT_PETSC(MatAssemblyBegin(p.P, MAT_FINAL_ASSEMBLY));
+    PERIDOT_PETSC(MatAssemblyEnd(p.P, MAT_FINAL_ASSEMBLY));
+  } else {
+    PERIDOT_PETSC(MatXAIJSetPreallocation(p.P, width_, on_rank.data(), off_rank.data(), nullptr, nullptr));
+  }
   PERIDOT_PETSC(MatSetOption(p.P, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   // GAMG's near-null space: without one it takes the block size's translations. The rotations as well (what
   // PETSc suggests for elasticity) made coarse operators with zero diagonal entries (an aggregate on which the
@@ -444,6 +650,30 @@ void NewtonKrylov::setup() {
   PERIDOT_PETSC(SNESSetTolerances(p.snes, 0.0, 0.0, 0.0, static_cast<PetscInt>(max_iterations_), 1000000000));
   PERIDOT_PETSC(SNESSetConvergenceTest(p.snes, convergence_test, this, nullptr));
   PERIDOT_PETSC(SNESSetMaxLinearSolveFailures(p.snes, 1000000000));
+  if (jacobian_ == Jacobian::finite_difference) {
+    // Columns whose rows do not meet share a color (a distance-2 coloring of P's stencil): one residual per
+    // color. The step is that of the matrix-free products, √ε · max(|u_k|, Δx_min).
+    MatColoring colorer = nullptr;
+    ISColoring colors = nullptr;
+    PERIDOT_PETSC(MatColoringCreate(p.P, &colorer));
+    PERIDOT_PETSC(MatColoringSetDistance(colorer, 2));
+    PERIDOT_PETSC(MatColoringSetType(colorer, comm.serial() ? MATCOLORINGSL : MATCOLORINGGREEDY));
+    PERIDOT_PETSC(MatColoringSetFromOptions(colorer));
+    const PetscErrorCode code = MatColoringApply(colorer, &colors);
+    MatColoringDestroy(&colorer);
+    check_petsc(code, "MatColoringApply");
+    PERIDOT_PETSC(MatFDColoringCreate(p.P, colors, &p.coloring));
+    // PETSc's prototype is generic; through void (*)(void), the cast GCC accepts without a warning.
+    const auto function = reinterpret_cast<PetscErrorCode (*)(void)>(reinterpret_cast<void (*)(void)>(&difference_function));
+    PERIDOT_PETSC(MatFDColoringSetFunction(p.coloring, function, this));
+    PERIDOT_PETSC(MatFDColoringSetParameters(p.coloring, std::sqrt(DBL_EPSILON), length_scale_));
+    PERIDOT_PETSC(MatFDColoringSetFromOptions(p.coloring));
+    PERIDOT_PETSC(MatFDColoringSetUp(p.P, colors, p.coloring));
+    PetscInt count = 0;
+    PERIDOT_PETSC(ISColoringGetColors(colors, nullptr, &count, nullptr));
+    colors_ = count;
+    ISColoringDestroy(&colors);
+  }
   // Matrix-free, the preconditioner is built once per equilibrium (−1: never again after the first).
   if (jacobian_ == Jacobian::matrix_free) PERIDOT_PETSC(SNESSetLagPreconditioner(p.snes, -1));
   KSP ksp = nullptr;
@@ -554,9 +784,14 @@ std::string NewtonKrylov::describe() const {
                      ramp_ ? "loads ramped by k/N" : "loads as given at each t_k", sim_.time_step());
   out += fmt::format("equilibrium      relative force residual ≤ {:.3g}, at most {} Newton iterations, {} line search\n",
                      tolerance_, max_iterations_, line_search_ ? "backtracking" : "no");
-  out += fmt::format("linear solves    {} preconditioned by {} of the pmb-like tangent, Jacobian {}, relative "
-                     "tolerance {:.3g}, at most {} iterations\n",
-                     linear_solver_, preconditioner_, jacobian_ == Jacobian::matrix_free ? "matrix-free" : "bond tangent",
+  const char* jacobian = jacobian_ == Jacobian::matrix_free    ? "matrix-free"
+                         : jacobian_ == Jacobian::bond_tangent ? "bond tangent"
+                         : jacobian_ == Jacobian::exact        ? "exact tangent (2δ stencil for lps)"
+                                                               : "colored finite differences (2δ stencil)";
+  const bool own_matrix = jacobian_ == Jacobian::exact || jacobian_ == Jacobian::finite_difference;
+  out += fmt::format("linear solves    {} preconditioned by {} of {}, Jacobian {}, relative tolerance {:.3g}, at most "
+                     "{} iterations\n",
+                     linear_solver_, preconditioner_, own_matrix ? "the Jacobian" : "the pmb-like tangent", jacobian,
                      linear_tolerance_, max_linear_iterations_);
   return out;
 }

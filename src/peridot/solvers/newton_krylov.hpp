@@ -8,8 +8,11 @@
 //   prescribed component of a point that has a free one, R = d (x − ū) with d the point's diagonal stiffness,
 //   so that the Newton update keeps it where the loads put it.
 //   Jacobian: matrix_free (J v = [R(u + h v) − R(u)]/h, h = √ε · max(Δx_min, ‖u‖∞)/‖v‖∞: every model, its
-//   inelastic return map included, since R is the trial state of the step), or bond_tangent, the assembled
-//   tangent K (below) itself (exact for pmb; a modified Newton method for the other models).
+//   inelastic return map included, since R is the trial state of the step), bond_tangent, the assembled
+//   tangent K (below) itself (exact for pmb; a modified Newton method for the other models), exact (pmb and
+//   lps: the sum of every family's exact part, solvers/family_tangent.hpp, on a 2δ stencil for lps) or
+//   finite_difference (any model: the same 2δ stencil by PETSc's colored finite differences of R). The last
+//   two are their own preconditioner's matrix.
 //   Preconditioner: K, the bond springs V_i V_j c G/ξ (internal_force.hpp bond_stiffness) along each intact
 //   bond's deformed direction, plus for pmb the geometric stiffness k (e/|y|)(I − n⊗n) of its turning force;
 //   blocks of the deck's dimension in a PETSc AIJ matrix of that block size (GAMG's near-null space its
@@ -28,6 +31,7 @@
 #include "peridot/solvers/quasi_static.hpp"
 
 struct _p_Vec;  // PETSc's Vec
+struct _p_Mat;  // PETSc's Mat
 
 namespace peridot {
 
@@ -46,6 +50,8 @@ class NewtonKrylov final : public QuasiStatic {
   const std::vector<double>& newton_residuals() const { return newton_residuals_; }
   /// Krylov iterations of the last load step in total.
   std::int64_t linear_iterations() const { return linear_iterations_; }
+  /// jacobian: finite_difference: the colors of the last equilibrium (residuals per Jacobian).
+  std::int64_t colors() const { return colors_; }
 
   struct Petsc;  // the PETSc objects (newton_krylov.cpp)
 
@@ -64,8 +70,8 @@ class NewtonKrylov final : public QuasiStatic {
   /// R(x) into r (PETSc arrays of the owned dofs); with record, its relative residual becomes the iterate's.
   void evaluate_residual(const double* x, double* r, bool record);
   /// The Jacobian at x: the base point of the matrix-free one (K assembled at the first iterate of the
-  /// equilibrium only), or K at x.
-  void assemble(const double* x);
+  /// equilibrium only), or the assembled Jacobian at x.
+  void assemble(_p_Vec* x);
   /// The iterate's relative residual and whether it is finite (the last recorded residual()).
   double recorded_residual() const { return recorded_; }
   /// SNES's convergence test at each Newton iterate: sets reason (a SNESConvergedReason; still iterating or why
@@ -80,6 +86,14 @@ class NewtonKrylov final : public QuasiStatic {
   void set_displacement(const double* x);
   /// K at the current u into the preconditioner matrix.
   void assemble_bond_tangent();
+  /// Per point, owned and ghost, 1 for each component that is an unknown of the system, 0 for the others.
+  VectorField unknown_components() const;
+  /// Every pair of every owned family (the 2δ stencil of the assembled Jacobians) into `graph`, a matrix over the
+  /// unknown points, with zeros.
+  void add_family_stencil(_p_Mat* graph);
+  /// Adds every owned family's exact tangent blocks to `target` (ADD_VALUES), the unknowns' rows and columns
+  /// only.
+  void add_family_blocks(_p_Mat* target);
   bool active(std::size_t k) const;
   /// f(row, k, i) for every unknown of the system: its row in PETSc's local arrays, k = 3i + component in
   /// Peridot's, i the point.
@@ -90,7 +104,7 @@ class NewtonKrylov final : public QuasiStatic {
       for (std::size_t c = 0; c < w; ++c) f(w * m + c, 3 * std::size_t{unknown_points_[m]} + c, std::size_t{unknown_points_[m]});
   }
 
-  enum class Jacobian { matrix_free, bond_tangent };
+  enum class Jacobian { matrix_free, bond_tangent, exact, finite_difference };
   Jacobian jacobian_;
   std::string linear_solver_, preconditioner_;
   double linear_tolerance_;
@@ -108,7 +122,7 @@ class NewtonKrylov final : public QuasiStatic {
   std::vector<double> newton_residuals_;
   double start_norm_ = 0, recorded_ = 0, recorded_load_ = 0, length_scale_ = 0;
   bool started_ = false;
-  std::int64_t linear_iterations_ = 0;
+  std::int64_t linear_iterations_ = 0, colors_ = 0;
 };
 
 }  // namespace peridot
