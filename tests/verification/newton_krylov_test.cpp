@@ -230,6 +230,33 @@ TEST(NewtonKrylov, LoadedPieceThatCameApartIsNamed) {
       << message;
 }
 
+TEST(NewtonKrylov, FreeRigidMotionIsNamed) {
+  // A plate held and pulled along x only: nothing holds it along y, its tangent is singular. Stopped after one
+  // Newton iteration, the error names the motion the supports leave free (relaxation's too).
+  for (const char* type : {"implicit", "relaxation"}) {
+    const std::string deck = std::string(R"(discretization: {dimension: 2, plane: stress, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  steel: {model: lps, density: 7800, youngs_modulus: 200 GPa, poisson_ratio: 0.3}
+bodies:
+  plate: {material: steel, shape: {box: {min: [0, 0], max: [0.012, 0.006]}}}
+node_sets:
+  left: {shape: {box: {min: [-1, -1], max: [0.003, 1]}}}
+  right: {shape: {box: {min: [0.009, -1], max: [1, 1]}}}
+boundary_conditions:
+  - {node_set: left, displacement: {x: "0"}}
+  - {node_set: right, displacement: {x: "1e-5"}}
+solver: {type: )") + type + R"(, load_steps: 1, tolerance: 1e-14, max_iterations: 1}
+output: {progress: false}
+)";
+    const std::string message = first_step_error(parse_deck(deck, "deck.yaml", "."));
+    EXPECT_NE(message.find("the supports do not hold every rigid motion, so the tangent is singular: 72 points "
+                           "(fragment of point 0 at (0.0005, 0.0005, 0) m) are free to translate along y; prescribe "
+                           "displacements that hold them"),
+              std::string::npos)
+        << type << ": " << message;
+  }
+}
+
 TEST(NewtonKrylov, DeckRefusesVelocitiesAndMovingWalls) {
   const std::string message = testing::static_deck_refusal("solver: {type: implicit, load_steps: 4, preconditioner: amg}");
   EXPECT_NE(message.find("deck.yaml:9:5: error: initial_conditions: an initial velocity has no meaning for solver "

@@ -89,7 +89,8 @@ void DynamicRelaxation::equilibrate() {
       return;
     }
     if (iteration >= max_iterations_) {
-      const std::string apart = unsupported_fragment();
+      std::string apart = unsupported_fragment();
+      if (apart.empty()) apart = free_rigid_motion();
       throw NumericalError(fmt::format(
           "dynamic relaxation did not converge in load step {} (time {:.6g} s, load factor {:.6g}): relative force "
           "residual {:.3e} after {} iterations, tolerance {:.3e}; {}",

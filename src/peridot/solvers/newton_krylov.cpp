@@ -766,6 +766,7 @@ void NewtonKrylov::equilibrate() {
     default: why = fmt::format("SNES stopped ({}) at Newton iteration {}", SNESConvergedReasons[reason], newton);
   }
   std::string cause = unsupported_fragment();
+  if (cause.empty()) cause = free_rigid_motion();
   if (cause.empty())
     cause = reason == SNES_DIVERGED_MAX_IT
                 ? "use more load_steps, raise solver.max_iterations or loosen solver.tolerance"

@@ -219,6 +219,143 @@ std::string QuasiStatic::unsupported_fragment() {
       worst->x[2]);
 }
 
+namespace {
+
+/// The eigenvalues (ascending) and unit eigenvectors (columns of v, row-major) of a symmetric n × n matrix a,
+/// n ≤ 6, by cyclic Jacobi rotations.
+void symmetric_eigen(int n, double a[6][6], double values[6], double v[6][6]) {
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) v[r][c] = r == c ? 1.0 : 0.0;
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    double off = 0, scale = 0;
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < n; ++c) (r == c ? scale : off) += a[r][c] * a[r][c];
+    if (off <= 1e-30 * scale) break;
+    for (int p = 0; p < n; ++p)
+      for (int q = p + 1; q < n; ++q) {
+        if (a[p][q] == 0) continue;
+        const double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
+        for (int k = 0; k < n; ++k) {  // a ← Jᵀ a J, columns then rows
+          const double kp = a[k][p], kq = a[k][q];
+          a[k][p] = c * kp - s * kq, a[k][q] = s * kp + c * kq;
+        }
+        for (int k = 0; k < n; ++k) {
+          const double pk = a[p][k], qk = a[q][k];
+          a[p][k] = c * pk - s * qk, a[q][k] = s * pk + c * qk;
+        }
+        for (int k = 0; k < n; ++k) {
+          const double kp = v[k][p], kq = v[k][q];
+          v[k][p] = c * kp - s * kq, v[k][q] = s * kp + c * kq;
+        }
+      }
+  }
+  for (int k = 0; k < n; ++k) values[k] = a[k][k];
+}
+
+}  // namespace
+
+std::string QuasiStatic::free_rigid_motion() {
+  sim_.relabel_fragments();
+  const State& state = sim_.state();
+  const Discretization& disc = sim_.discretization();
+  const Communicator& comm = sim_.communicator();
+  const auto& kind = sim_.loads().dof_kinds();
+  const bool contact = sim_.has_contact();
+  const std::size_t owned = sim_.num_owned();
+  const int dimension = std::min(3, std::max(2, sim_.problem().dimension));
+  // The rigid motions of the deck's dimension: translations along its axes, rotations about the axes
+  // perpendicular to its plane (2D: about z), measured from the centre of the bodies' box, per its size.
+  const int modes = dimension == 3 ? 6 : 3;
+  double low[3], high[3];
+  for (int d = 0; d < 3; ++d) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t i = 0; i < owned; ++i) lo = std::min(lo, disc.x.data()[3 * i + d]), hi = std::max(hi, disc.x.data()[3 * i + d]);
+    low[d] = comm.min(lo), high[d] = comm.max(hi);
+  }
+  if (!(high[0] >= low[0])) return {};
+  double centre[3], size = 0;
+  for (int d = 0; d < 3; ++d) centre[d] = 0.5 * (low[d] + high[d]), size = std::max(size, high[d] - low[d]);
+  if (size <= 0) size = 1;
+  // Per fragment: label, points, the named point's place, and G = Σ φ φᵀ over its supported dofs (prescribed,
+  // or pressed by contact), φ the rigid motions' values at the dof. A motion G does not resist is free.
+  const std::size_t fields = 6 + 36;
+  std::map<double, std::vector<double>> local;
+  for (std::size_t i = 0; i < owned; ++i) {
+    std::vector<double>& f = local[state.fragment[i]];
+    if (f.empty()) f.assign(fields, 0.0), f[0] = state.fragment[i];
+    f[1] += 1;
+    const Vec3 x = disc.x.get(i);
+    if (static_cast<double>(disc.id_of(i)) == f[0]) f[2] = 1, f[3] = x.x, f[4] = x.y, f[5] = x.z;
+    const double r[3] = {(x.x - centre[0]) / size, (x.y - centre[1]) / size, (x.z - centre[2]) / size};
+    for (int d = 0; d < dimension; ++d) {
+      const std::size_t k = 3 * i + static_cast<std::size_t>(d);
+      if (kind[k] == DofKind::free && !(contact && sim_.contact_force().data()[k] != 0)) continue;
+      double phi[6] = {0, 0, 0, 0, 0, 0};
+      phi[d] = 1;  // translation along d; rotation about axis a moves component d by (e_a × r)_d
+      if (dimension == 3) {
+        for (int axis = 0; axis < 3; ++axis) {
+          const int next = (axis + 1) % 3, last = (axis + 2) % 3;
+          phi[3 + axis] = d == next ? -r[last] : d == last ? r[next] : 0.0;
+        }
+      } else {
+        phi[2] = d == 0 ? -r[1] : r[0];
+      }
+      for (int m = 0; m < modes; ++m)
+        for (int n = 0; n < modes; ++n) f[6 + 6 * m + n] += phi[m] * phi[n];
+    }
+  }
+  std::vector<double> flat;
+  for (const auto& entry : local) flat.insert(flat.end(), entry.second.begin(), entry.second.end());
+  const std::vector<double> all = comm.all_gather(flat);
+  std::map<double, std::vector<double>> merged;  // in label order, whatever the ranks
+  for (std::size_t at = 0; at + fields <= all.size(); at += fields) {
+    std::vector<double>& f = merged[all[at]];
+    if (f.empty()) f.assign(fields, 0.0), f[0] = all[at];
+    f[1] += all[at + 1];
+    if (all[at + 2] != 0) f[2] = 1, f[3] = all[at + 3], f[4] = all[at + 4], f[5] = all[at + 5];
+    for (std::size_t k = 6; k < fields; ++k) f[k] += all[at + k];
+  }
+  static constexpr const char* axes = "xyz";
+  std::size_t free_fragments = 0;
+  std::string first;
+  for (const auto& [label, f] : merged) {
+    double g[6][6], values[6], vectors[6][6], largest = 0;
+    for (int m = 0; m < modes; ++m)
+      for (int n = 0; n < modes; ++n) g[m][n] = f[6 + 6 * m + n], largest = std::max(largest, g[m][n]);
+    std::vector<std::string> motions;
+    if (largest == 0) {
+      motions.push_back("translate and rotate (no support at all)");
+    } else {
+      for (int m = 0; m < modes; ++m)
+        for (int n = 0; n < modes; ++n) g[m][n] /= largest;
+      symmetric_eigen(modes, g, values, vectors);
+      for (int k = 0; k < modes; ++k) {
+        if (values[k] > 1e-9) continue;
+        int dominant = 0;  // the rigid motion that weighs most in the free one names it
+        for (int m = 1; m < modes; ++m)
+          if (std::abs(vectors[m][k]) > std::abs(vectors[dominant][k])) dominant = m;
+        if (dominant < dimension)
+          motions.push_back(fmt::format("translate along {}", axes[dominant]));
+        else
+          motions.push_back(fmt::format("rotate about an axis along {}", dimension == 3 ? axes[dominant - 3] : 'z'));
+      }
+    }
+    if (motions.empty()) continue;
+    if (free_fragments++ > 0) continue;
+    std::string list;
+    for (std::size_t k = 0; k < motions.size(); ++k)
+      list += (k == 0 ? "" : k + 1 == motions.size() ? " and " : ", ") + motions[k];
+    first = fmt::format("{} points (fragment of point {} at ({:g}, {:g}, {:g}) m) are free to {}",
+                        static_cast<std::uint64_t>(f[1]), static_cast<std::uint64_t>(label), f[3], f[4], f[5], list);
+  }
+  if (free_fragments == 0) return {};
+  return fmt::format("the supports do not hold every rigid motion, so the tangent is singular: {}{}; prescribe "
+                     "displacements that hold them",
+                     first, free_fragments > 1 ? fmt::format(" ({} such fragments)", free_fragments) : "");
+}
+
 void QuasiStatic::initialize() {
   sim_.apply_initial_state();
   State& state = sim_.state();

@@ -81,6 +81,10 @@ class QuasiStatic : public TimeIntegrator {
   /// along it: a sentence naming the most loaded such fragment, the same on every rank; empty otherwise.
   /// Collective.
   std::string unsupported_fragment();
+  /// When a fragment's supports (prescribed dofs, contact) leave a rigid motion of the deck's dimension free, so
+  /// that the tangent is singular: a sentence naming the first such fragment and its free motions, the same on
+  /// every rank; empty otherwise. Collective.
+  std::string free_rigid_motion();
   /// state().v = (u − u at the last accepted load step)/Δt, ghosts included.
   void set_step_velocity();
 
