@@ -230,6 +230,74 @@ TEST(NewtonKrylov, LoadedPieceThatCameApartIsNamed) {
       << message;
 }
 
+// The nonlocal volume constraint (bodies.<name>.volume_constraint): an affine displacement prescribed on a layer
+// 2δ thick around an lps body is an equilibrium of every point of the body (each family and each neighbour's
+// family full and symmetric), so the solution is that field inside, to the solver's tolerance, in 2D and 3D.
+TEST(NewtonKrylov, VolumeConstraintHoldsAnAffineField) {
+  for (const int dimension : {2, 3}) {
+    const bool three = dimension == 3;
+    const std::string deck =
+        std::string("discretization: {dimension: ") + (three ? "3" : "2, plane: stress") +
+        R"(, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  steel: {model: lps, density: 7800, youngs_modulus: 200 GPa, poisson_ratio: 0.3}
+bodies:
+  block: {material: steel, volume_constraint: 6.03 mm, shape: {box: {min: [0, 0, 0], max: [0.008, 0.006, )" +
+        (three ? "0.004" : "0") + R"(]}}}
+boundary_conditions:
+  - {node_set: block_constraint, displacement: {x: "1e-3*x + 2e-4*y", y: "-3e-4*x + 5e-4*y")" +
+        (three ? R"(, z: "1e-4*x - 2e-4*z")" : "") + R"(}}
+solver: {type: implicit, load_steps: 1, tolerance: 1e-12}
+output: {progress: false}
+)";
+    const auto sim = solve(parse_deck(deck, "deck.yaml", "."));
+    const Discretization& disc = sim->discretization();
+    std::size_t body = 0, layer = 0;
+    double worst = 0, largest = 0;
+    for (std::size_t i = 0; i < disc.num_points(); ++i) {
+      const Vec3 x = disc.x.get(i), u = sim->state().u.get(i);
+      const bool inside = x.x > 0 && x.x < 0.008 && x.y > 0 && x.y < 0.006 && (!three || (x.z > 0 && x.z < 0.004));
+      ++(inside ? body : layer);
+      if (!inside) continue;
+      const Vec3 exact{1e-3 * x.x + 2e-4 * x.y, -3e-4 * x.x + 5e-4 * x.y, three ? 1e-4 * x.x - 2e-4 * x.z : 0.0};
+      worst = std::max({worst, std::abs(u.x - exact.x), std::abs(u.y - exact.y), std::abs(u.z - exact.z)});
+      largest = std::max({largest, std::abs(exact.x), std::abs(exact.y)});
+    }
+    EXPECT_EQ(body, three ? 192u : 48u);
+    EXPECT_GT(layer, 4 * body) << "the layer, 6 spacings thick around the block";
+    EXPECT_LT(worst, 1e-9 * largest) << dimension << "D: " << body << " points, " << layer << " in the layer";
+    std::cout << dimension << "D: " << body << " points, " << layer << " in the layer, largest error " << worst / largest
+              << " of max |u|\n";
+  }
+}
+
+TEST(NewtonKrylov, DeckRefusesAVolumeConstraintWithoutAShapeOrUnderATakenName) {
+  const std::string deck = R"(discretization: {dimension: 2, plane: stress, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  steel: {model: lps, density: 7800, youngs_modulus: 200 GPa, poisson_ratio: 0.3}
+bodies:
+  block: {material: steel, volume_constraint: 6 mm, shape: {box: {min: [0, 0], max: [0.008, 0.006]}}}
+  read: {material: steel, volume_constraint: 6 mm, points_file: points.txt}
+node_sets:
+  block_constraint: {shape: {box: {min: [-1, -1], max: [0.001, 0.001]}}}
+solver: {type: implicit}
+)";
+  std::string message;
+  try {
+    parse_deck(deck, "deck.yaml", ".");
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("deck.yaml:6:27: error: bodies.read.volume_constraint: the layer is made on the lattice "
+                         "around a shape, and this body has none"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("deck.yaml:8:3: error: node_sets.block_constraint: is the name of the volume-constraint layer "
+                         "of body 'block'; rename this node set"),
+            std::string::npos)
+      << message;
+}
+
 TEST(NewtonKrylov, FreeRigidMotionIsNamed) {
   // A plate held and pulled along x only: nothing holds it along y, its tangent is singular. Stopped after one
   // Newton iteration, the error names the motion the supports leave free (relaxation's too).

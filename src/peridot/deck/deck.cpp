@@ -426,6 +426,12 @@ struct Parser {
         ctx.error(r["block"].key_pos, path, "'block' filters the rows of a points_file, and this body has none (a mesh takes mesh.block)");
       HorizonInput h = read_horizon(r);
       b.horizon = h.given() ? resolve_horizon(h, path) : p.horizon;
+      if (r.given("volume_constraint")) {
+        b.volume_constraint = r["volume_constraint"].number;
+        if (!r.present("shape"))
+          ctx.error(r["volume_constraint"].key_pos, r.path_of("volume_constraint"),
+                    "the layer is made on the lattice around a shape, and this body has none");
+      }
       p.bodies.push_back(std::move(b));
     });
     check_spacing_given();
@@ -531,6 +537,21 @@ struct Parser {
       }
       p.node_sets.push_back(std::move(n));
     });
+    // Each volume-constraint layer is a node set of its own, named after its body.
+    for (const BodySpec& body : p.bodies) {
+      if (body.volume_constraint <= 0) continue;
+      NodeSetSpec n;
+      n.name = body.name + "_constraint";
+      n.pos = body.pos;
+      n.mesh_set = n.name;
+      n.bodies = {body.name};
+      n.generated = true;
+      for (const NodeSetSpec& given : p.node_sets)
+        if (given.name == n.name)
+          ctx.error(given.pos, "node_sets." + given.name,
+                    fmt::format("is the name of the volume-constraint layer of body '{}'; rename this node set", body.name));
+      p.node_sets.push_back(std::move(n));
+    }
   }
 
   void check_node_sets(const Value& v, const std::string& path, const std::vector<std::string>& names) {

@@ -115,6 +115,9 @@ struct BodySpec {
   std::string points_file;         ///< resolved relative to the deck's folder
   std::optional<int> block_filter;  ///< keep only rows whose block column equals this
   double horizon = 0;               ///< δ (m), resolved from horizon or horizon_factor × spacing
+  /// Thickness (m) of the volume-constraint layer: lattice sites outside the shape within this distance of the
+  /// body's own, added to the body as the node set <name>_constraint; 0: none (shape bodies only).
+  double volume_constraint = 0;
 };
 
 struct PrecrackSpec {
@@ -136,6 +139,9 @@ struct NodeSetSpec {
   std::string ids_file;             ///< or: a text file of 0-based point ids (in input order)
   /// or: a node set, side set or element set of the bodies' meshes (geometry/mesh.hpp, mesh_point_sets)
   std::string mesh_set;
+  /// The volume-constraint layer of bodies[0] (a set the deck makes, mesh_set naming the discretization's
+  /// record of the layer), not written back to the resolved deck.
+  bool generated = false;
 };
 
 /// A scalar expression of x, y, z (and t where allowed), checked by muParser at parse time.

@@ -1,5 +1,6 @@
 // The resolved deck: what the run understood, written next to its results so that a run folder
 // describes itself. Every value is explicit and in SI; parse_deck reads it back unchanged.
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -188,6 +189,7 @@ void emit_bodies(YAML::Emitter& out, const Problem& p) {
     }
     if (b.block_filter) out << YAML::Key << "block" << YAML::Value << *b.block_filter;
     out << YAML::Key << "horizon" << YAML::Value << number(b.horizon);
+    if (b.volume_constraint > 0) out << YAML::Key << "volume_constraint" << YAML::Value << number(b.volume_constraint);
     out << YAML::EndMap;
   }
   out << YAML::EndMap;
@@ -228,9 +230,10 @@ void emit_precracks_and_node_sets(YAML::Emitter& out, const Problem& p) {
     out << YAML::EndMap;
   });
 
-  if (!p.node_sets.empty()) {
+  if (std::any_of(p.node_sets.begin(), p.node_sets.end(), [](const NodeSetSpec& n) { return !n.generated; })) {
     out << YAML::Key << "node_sets" << YAML::Value << YAML::BeginMap;
     for (const NodeSetSpec& n : p.node_sets) {
+      if (n.generated) continue;  // the deck makes it again from its body's volume_constraint
       out << YAML::Key << n.name << YAML::Value << YAML::BeginMap;
       if (n.shape) {
         out << YAML::Key << "shape" << YAML::Value;

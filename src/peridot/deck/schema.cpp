@@ -249,7 +249,13 @@ std::vector<SectionSpec> make_sections() {
                  .one_of = "source"},
                 {.key = "block", .type = VT::integer, .description = "with points_file: keep only rows of this block"},
                 horizon_factor_key(false),
-                horizon_key(false)}});
+                horizon_key(false),
+                {.key = "volume_constraint", .unit = Unit::length, .range = positive,
+                 .description = "thickness of a layer of points added outside the shape (the lattice sites within this "
+                                "distance of the body's own), with the body's material, as the node set "
+                                "<body>_constraint: prescribe its displacement in boundary_conditions for the nonlocal "
+                                "volume constraint (δ for bond-based models, 2δ for state-based ones, whose forces read "
+                                "the neighbours' dilatations); shape bodies only"}}});
   s.push_back({"bodies.<name>.mesh",
                "a mesh file: one point per element at its centroid with the element's volume (hexahedra, tetrahedra and "
                "prisms of 8, 4 and 6 nodes; quadrilaterals and triangles of 4 and 3 nodes in 2D, times the thickness), "

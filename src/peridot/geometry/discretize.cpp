@@ -1,6 +1,7 @@
 #include "peridot/geometry/discretize.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -74,6 +75,53 @@ void fill_shape(const Problem& problem, std::int32_t block, std::vector<RawPoint
         if (!body.shape->contains(p, dim) || claimed_by_earlier_body(problem, block, p)) continue;
         if (problem.jitter > 0)
           for (int d = 0; d < dim; ++d) p[d] += (2 * uniform01(rng) - 1) * problem.jitter * dx;
+        out.push_back({p, volume, block, 0});
+      }
+}
+
+/// The volume-constraint layer of a shape body: the lattice sites outside every body's shape within
+/// body.volume_constraint of one of this body's own sites, with its material; their indices in `out` go to
+/// `layer`.
+void fill_layer(const Problem& problem, std::int32_t block, std::vector<RawPoint>& out, std::vector<std::uint32_t>& layer,
+                std::uint64_t& rng) {
+  const BodySpec& body = problem.bodies[block];
+  const int dim = problem.dimension;
+  const double dx = problem.spacing, reach = body.volume_constraint;
+  const Vec3 origin = problem.lattice_origin;
+  const BoundingBox box = body.shape->bounds(dim);
+  const long steps = static_cast<long>(std::floor(reach / dx + 1e-9));
+  // The lattice offsets within the thickness (a site's distance to a site of the body is a multiple of them).
+  std::vector<std::array<long, 3>> offsets;
+  for (long k = dim == 3 ? -steps : 0; k <= (dim == 3 ? steps : 0); ++k)
+    for (long j = dim >= 2 ? -steps : 0; j <= (dim >= 2 ? steps : 0); ++j)
+      for (long i = -steps; i <= steps; ++i)
+        if (static_cast<double>(i * i + j * j + k * k) * dx * dx <= reach * reach * (1 + 1e-12)) offsets.push_back({i, j, k});
+  const auto site = [&](long i, long j, long k) {
+    return Vec3{origin.x + (i + 0.5) * dx, dim >= 2 ? origin.y + (j + 0.5) * dx : 0.0, dim == 3 ? origin.z + (k + 0.5) * dx : 0.0};
+  };
+  const auto of_this_body = [&](Vec3 q) { return body.shape->contains(q, dim) && !claimed_by_earlier_body(problem, block, q); };
+  const auto in_any_body = [&](Vec3 q) {
+    return std::any_of(problem.bodies.begin(), problem.bodies.end(),
+                       [&](const BodySpec& b) { return b.shape && b.shape->contains(q, dim); });
+  };
+  long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int d = 0; d < dim; ++d) {
+    lo[d] = static_cast<long>(std::floor((box.lo[d] - reach - origin[d]) / dx - 0.5)) - 1;
+    hi[d] = static_cast<long>(std::ceil((box.hi[d] + reach - origin[d]) / dx - 0.5)) + 1;
+  }
+  const double volume = std::pow(dx, dim) * problem.cross_section();
+  for (long k = lo[2]; k <= hi[2]; ++k)
+    for (long j = lo[1]; j <= hi[1]; ++j)
+      for (long i = lo[0]; i <= hi[0]; ++i) {
+        Vec3 p = site(i, j, k);
+        if (in_any_body(p)) continue;
+        const bool near = std::any_of(offsets.begin(), offsets.end(), [&](const std::array<long, 3>& o) {
+          return of_this_body(site(i + o[0], j + o[1], k + o[2]));
+        });
+        if (!near) continue;
+        if (problem.jitter > 0)
+          for (int d = 0; d < dim; ++d) p[d] += (2 * uniform01(rng) - 1) * problem.jitter * dx;
+        layer.push_back(static_cast<std::uint32_t>(out.size()));
         out.push_back({p, volume, block, 0});
       }
 }
@@ -184,6 +232,12 @@ Discretization discretize(const Problem& problem) {
     const std::size_t before = raw.size();
     if (body.shape) {
       fill_shape(problem, static_cast<std::int32_t>(b), raw, rng);
+      if (body.volume_constraint > 0 && raw.size() > before) {
+        Discretization::MeshSet& layer = mesh_sets.emplace_back();
+        layer.name = body.name + "_constraint";
+        layer.block = static_cast<std::int32_t>(b);
+        fill_layer(problem, static_cast<std::int32_t>(b), raw, layer.input_ids, rng);
+      }
     } else if (body.mesh) {
       const std::string key = body.mesh->format + ":" + body.mesh->file;  // bodies sharing a file read it once
       if (!meshes.contains(key)) meshes.emplace(key, read_mesh(*body.mesh));
