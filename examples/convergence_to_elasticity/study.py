@@ -73,11 +73,6 @@ def deck(dim, n, quadrature, directory):
     axes = "xyz"[:dim]
     u = {a: f"{A}*({r}) + {A}*({g})" for a, r, g in zip(axes, rot, grad)}
     b = {a: f"{A * c_rot!r}*({r}) + {A * c_grad!r}*({g})" for a, r, g in zip(axes, rot, grad)}
-    pad = LAYER * delta
-    lo = [-pad] * dim + [0.0] * (3 - dim)
-    hi = [1 + pad] * dim + [0.0] * (3 - dim)
-    far_lo = [-2.0] * dim + [-1.0] * (3 - dim)
-    far_hi = [3.0] * dim + [1.0] * (3 - dim)
     inner_hi = [1.0] * dim + [0.0] * (3 - dim)
     v = lambda p: "[" + ", ".join(repr(float(t)) for t in p) + "]"
     plane = "\n  plane: stress" if dim == 2 else ""
@@ -92,12 +87,9 @@ discretization:
 materials:
   solid: {{model: lps, density: 1000, youngs_modulus: {E}, poisson_ratio: {NU}}}
 bodies:
-  body: {{material: solid, shape: {{box: {{min: {v(lo)}, max: {v(hi)}}}}}}}
-node_sets:
-  constraint_layer:
-    shape: {{difference: [{{box: {{min: {v(far_lo)}, max: {v(far_hi)}}}}}, {{box: {{min: {v([0, 0, 0])}, max: {v(inner_hi)}}}}}]}}
+  body: {{material: solid, volume_constraint: {LAYER * delta!r}, shape: {{box: {{min: {v([0, 0, 0])}, max: {v(inner_hi)}}}}}}}
 boundary_conditions:
-  - node_set: constraint_layer
+  - node_set: body_constraint
     displacement: {{{", ".join(f'{a}: "{u[a]}"' for a in axes)}}}
 body_forces:
   - {{{", ".join(f'{a}: "{b[a]}"' for a in axes)}}}

@@ -23,16 +23,20 @@ namespace peridot {
 /// Whether every block's model has a closed-form tangent here (pmb, lps), or the name of the first that has not.
 std::string_view model_without_exact_tangent(const ModelContext& ctx);
 
-/// One family's part of K = ∂R/∂u (N/m).
+/// One family's part of K = ∂R/∂u (N/m), in the compact form above: the bond blocks and, for lps, ρ and γ.
 struct FamilyTangent {
-  /// Point i first, then the partners of its intact bonds in bond order.
+  /// Point i first, then the partners of its intact bonds in bond order (slots 0 … n).
   std::vector<std::uint32_t> points;
-  /// 3×3 blocks, K(r, c) for row point points[r] and column point points[c]: blocks[9 (r·n + c) + 3a + b],
-  /// n = points.size().
-  std::vector<double> blocks;
-  /// The dilatation couples every pair of the family (lps); otherwise only the blocks of row or column 0 and
-  /// the diagonal are nonzero (pmb).
-  bool coupled = false;
+  /// Per partner slot q ≥ 1 (index q − 1): the deformed direction M (3 each), and D = axial M⊗M + turning I with
+  /// the weights of its force on i (on_i) and on the partner (on_j).
+  std::vector<double> direction, axial, turning, on_i, on_j;
+  /// lps: ρ and γ per slot (3 each); empty for pmb.
+  std::vector<double> rho, gamma;
+
+  bool coupled() const { return !rho.empty(); }
+  /// Adds the 3×3 block K(r, c) of slots r and c to k (row-major). Nonzero for every pair when coupled, else
+  /// for (0, 0), (0, q), (q, 0) and (q, q) only.
+  void add_block(std::size_t r, std::size_t c, double k[9]) const;
 };
 
 /// Family i's part of K at the displacements u (owned and ghost points, 3 per point). i's block's model must

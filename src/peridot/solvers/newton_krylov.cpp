@@ -124,6 +124,10 @@ struct NewtonKrylov::Petsc {
   std::vector<PetscInt> starts, columns;
   PetscInt first_row = 0;
   std::vector<double> sums;  ///< the exact tangent of the owned rows, summed here before it goes to P
+  /// Which owned families reach each point, owned or ghost (CSR from member_start): the family's point and
+  /// the point's slot in it (0: its own family; q: the partner of its q-th intact bond).
+  std::vector<std::size_t> member_start;
+  std::vector<std::uint32_t> member_family, member_slot;
   ~Petsc() {
     SNESDestroy(&snes);
     MatFDColoringDestroy(&coloring);
@@ -287,20 +291,57 @@ VectorField NewtonKrylov::unknown_components() const {
   return unknown;
 }
 
+void NewtonKrylov::find_family_members() {
+  Petsc& p = *petsc_;
+  const BondList& bonds = sim_.bonds();
+  const std::size_t owned = sim_.num_owned(), points = sim_.discretization().num_points();
+  // Every owned family, a fully prescribed point's too: its bonds add to its unknown partners' diagonal blocks.
+  const auto for_each_member = [&](auto&& f) {
+    for (std::size_t i = 0; i < owned; ++i) {
+      f(i, i, 0u);
+      std::uint32_t slot = 0;
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
+        if (!bonds.broken[b]) f(i, bonds.neighbors[b], ++slot);
+    }
+  };
+  p.member_start.assign(points + 1, 0);
+  for_each_member([&](std::size_t, std::size_t r, std::uint32_t) { ++p.member_start[r + 1]; });
+  for (std::size_t r = 0; r < points; ++r) p.member_start[r + 1] += p.member_start[r];
+  p.member_family.resize(p.member_start[points]);
+  p.member_slot.resize(p.member_start[points]);
+  std::vector<std::size_t> next(p.member_start.begin(), p.member_start.end() - 1);
+  for_each_member([&](std::size_t i, std::size_t r, std::uint32_t slot) {
+    p.member_family[next[r]] = static_cast<std::uint32_t>(i);
+    p.member_slot[next[r]++] = slot;
+  });
+}
+
 void NewtonKrylov::add_family_stencil(Mat graph) {
   const Petsc& p = *petsc_;
   const BondList& bonds = sim_.bonds();
-  std::vector<PetscInt> family;
+  const std::size_t points = sim_.discretization().num_points();
+  // Row by row, each point (owned or ghost) that a family reaches: the points of those families, each once.
+  std::vector<std::size_t> seen(points, SIZE_MAX);
+  std::vector<PetscInt> columns;
   std::vector<double> zeros;
-  // Every owned family, a fully prescribed point's too (its bonds add to its unknown partners' diagonal blocks);
-  // PETSc ignores the negative indices of points outside the system.
-  for (std::size_t i = 0; i < sim_.num_owned(); ++i) {
-    family.assign(1, p.block[i]);
-    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
-      if (!bonds.broken[b]) family.push_back(p.block[bonds.neighbors[b]]);
-    const auto n = static_cast<PetscInt>(family.size());
-    zeros.assign(family.size() * family.size(), 0.0);
-    PERIDOT_PETSC(MatSetValues(graph, n, family.data(), n, family.data(), zeros.data(), INSERT_VALUES));
+  for (std::size_t r = 0; r < points; ++r) {
+    const PetscInt row = p.block[r];
+    if (row < 0 || p.member_start[r] == p.member_start[r + 1]) continue;
+    columns.clear();
+    const auto add = [&](std::size_t c) {
+      if (seen[c] == r || p.block[c] < 0) return;
+      seen[c] = r;
+      columns.push_back(p.block[c]);
+    };
+    for (std::size_t k = p.member_start[r]; k < p.member_start[r + 1]; ++k) {
+      const std::uint32_t i = p.member_family[k];
+      add(i);
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
+        if (!bonds.broken[b]) add(bonds.neighbors[b]);
+    }
+    zeros.assign(columns.size(), 0.0);
+    PERIDOT_PETSC(MatSetValues(graph, 1, &row, static_cast<PetscInt>(columns.size()), columns.data(), zeros.data(),
+                               INSERT_VALUES));
   }
 }
 
@@ -310,78 +351,80 @@ void NewtonKrylov::add_family_blocks(Mat target) {
   const double* known = unknown.data();
   const double* u = sim_.state().u.data();
   const ModelContext& ctx = sim_.model();
-  const std::size_t owned = sim_.num_owned(), w = static_cast<std::size_t>(width_);
-  // The owned rows are summed here, each block found in its row's sorted stencil (PETSc's own insertion, a
-  // search per scalar, took 2 s per assembly of a 1 176-point 3D lps bar); the rows of ghost points go to
-  // their owners through PETSc.
-  p.sums.assign(w * w * p.columns.size(), 0.0);
-  FamilyTangent family;
-  std::vector<PetscInt> ghost_columns;
-  std::vector<double> ghost_values;
-  const auto add_row = [&](std::size_t r, bool whole) {
-    const std::uint32_t row_point = family.points[r];
-    const PetscInt row = p.block[row_point];
-    if (row < 0) return;
-    const std::size_t n = family.points.size();
-    // Which columns of the family this row has: all (lps, or pmb's row i), else i and itself (pmb's row j).
-    const auto for_each_column = [&](auto&& f) {
-      if (whole) {
-        for (std::size_t c = 0; c < n; ++c) f(c);
+  const std::size_t owned = sim_.num_owned(), points = sim_.discretization().num_points();
+  const std::size_t w = static_cast<std::size_t>(width_), w2 = w * w;
+  std::vector<FamilyTangent> families(owned);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < owned; ++i) family_tangent(ctx, u, i, families[i]);
+  // Row r sums, over the families that reach it (in a fixed order: the same bits on any thread count), the
+  // blocks of its slot against the family's slots; its PETSc columns are sorted, each column point's place
+  // found once per row. Rows of unknown owned points into sums; rows of ghosts to their owners through PETSc.
+  const auto sum_row = [&](std::size_t r, std::vector<std::size_t>& seen, std::vector<std::size_t>& place,
+                           const auto& place_of, double* values, std::size_t count) {
+    for (std::size_t k = p.member_start[r]; k < p.member_start[r + 1]; ++k) {
+      const FamilyTangent& family = families[p.member_family[k]];
+      const std::size_t slot = p.member_slot[k], n = family.points.size();
+      const auto column = [&](std::size_t c) {
+        const std::uint32_t q = family.points[c];
+        if (p.block[q] < 0) return;
+        if (seen[q] != r) seen[q] = r, place[q] = place_of(q);
+        double block[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        family.add_block(slot, c, block);
+        double* out = values + place[q] * w;
+        for (std::size_t a = 0; a < w; ++a)
+          for (std::size_t b = 0; b < w; ++b)  // a prescribed component's row and column are not K's
+            out[a * count * w + b] += known[3 * r + a] * known[3 * q + b] * block[3 * a + b];
+      };
+      if (family.coupled() || slot == 0) {
+        for (std::size_t c = 0; c < n; ++c) column(c);
       } else {
-        f(0), f(r);
+        column(0), column(slot);
       }
-    };
-    const auto block_value = [&](std::size_t c, std::size_t a, std::size_t b) {
-      const std::uint32_t column_point = family.points[c];  // a prescribed component's row and column are not K's
-      return known[3 * row_point + a] * known[3 * column_point + b] * family.blocks[9 * (r * n + c) + 3 * a + b];
-    };
-    if (row_point < owned) {
-      const std::size_t m = static_cast<std::size_t>(row - p.first_row);
+    }
+  };
+  p.sums.assign(w2 * p.columns.size(), 0.0);
+#pragma omp parallel
+  {
+    std::vector<std::size_t> seen(points, SIZE_MAX), place(points, 0);
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
+      const std::uint32_t r = unknown_points_[m];
       const PetscInt* first = p.columns.data() + p.starts[m];
       const PetscInt* last = p.columns.data() + p.starts[m + 1];
       const std::size_t count = static_cast<std::size_t>(last - first);
-      double* values = p.sums.data() + w * w * static_cast<std::size_t>(p.starts[m]);
-      for_each_column([&](std::size_t c) {
-        const PetscInt column = p.block[family.points[c]];
-        if (column < 0) return;
-        const std::size_t k = static_cast<std::size_t>(std::lower_bound(first, last, column) - first);
-        for (std::size_t a = 0; a < w; ++a)
-          for (std::size_t b = 0; b < w; ++b) values[a * count * w + k * w + b] += block_value(c, a, b);
-      });
-      return;
-    }
-    ghost_columns.clear();
-    for_each_column([&](std::size_t c) { ghost_columns.push_back(p.block[family.points[c]]); });
-    const std::size_t count = ghost_columns.size();
-    ghost_values.assign(w * w * count, 0.0);
-    std::size_t k = 0;
-    for_each_column([&](std::size_t c) {
+      const auto place_of = [&](std::uint32_t q) {
+        return static_cast<std::size_t>(std::lower_bound(first, last, p.block[q]) - first);
+      };
+      double* values = p.sums.data() + w2 * static_cast<std::size_t>(p.starts[m]);
+      sum_row(r, seen, place, place_of, values, count);
+      // A prescribed component of an unknown point: the row d (x − ū) of the residual.
+      const std::size_t self = place_of(r);
       for (std::size_t a = 0; a < w; ++a)
-        for (std::size_t b = 0; b < w; ++b) ghost_values[a * count * w + k * w + b] = block_value(c, a, b);
-      ++k;
-    });
-    PERIDOT_PETSC(MatSetValuesBlocked(target, 1, &row, static_cast<PetscInt>(count), ghost_columns.data(),
-                                      ghost_values.data(), ADD_VALUES));  // negative columns are ignored
-  };
-  // Every owned family, a fully prescribed point's too (its bonds add to its unknown partners' diagonal blocks).
-  for (std::size_t i = 0; i < owned; ++i) {
-    family_tangent(ctx, u, i, family);
-    for (std::size_t r = 0; r < family.points.size(); ++r) add_row(r, family.coupled || r == 0);
-  }
-  // A prescribed component of an unknown point: the row d (x − ū) of the residual.
-  for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
-    const std::uint32_t i = unknown_points_[m];
-    const PetscInt* first = p.columns.data() + p.starts[m];
-    const std::size_t count = static_cast<std::size_t>(p.starts[m + 1] - p.starts[m]);
-    const std::size_t k = static_cast<std::size_t>(std::lower_bound(first, first + count, p.block[i]) - first);
-    for (std::size_t a = 0; a < w; ++a)
-      if (!active(3 * i + a))
-        p.sums[w * w * static_cast<std::size_t>(p.starts[m]) + a * count * w + k * w + a] += diagonal_[i];
+        if (!active(3 * r + a)) values[a * count * w + self * w + a] += diagonal_[r];
+    }
   }
   for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
     const PetscInt row = p.first_row + static_cast<PetscInt>(m), count = p.starts[m + 1] - p.starts[m];
     PERIDOT_PETSC(MatSetValuesBlocked(target, 1, &row, count, p.columns.data() + p.starts[m],
-                                      p.sums.data() + w * w * static_cast<std::size_t>(p.starts[m]), ADD_VALUES));
+                                      p.sums.data() + w2 * static_cast<std::size_t>(p.starts[m]), ADD_VALUES));
+  }
+  // Ghost rows: their columns listed as they come.
+  std::vector<std::size_t> seen(points, SIZE_MAX), place(points, 0);
+  std::vector<PetscInt> columns;
+  std::vector<double> values;
+  for (std::size_t r = owned; r < points; ++r) {
+    const PetscInt row = p.block[r];
+    if (row < 0 || p.member_start[r] == p.member_start[r + 1]) continue;
+    columns.clear();
+    for (std::size_t k = p.member_start[r]; k < p.member_start[r + 1]; ++k) {  // the columns first
+      const FamilyTangent& family = families[p.member_family[k]];
+      for (const std::uint32_t q : family.points)
+        if (p.block[q] >= 0 && seen[q] != r) seen[q] = r, place[q] = columns.size(), columns.push_back(p.block[q]);
+    }
+    values.assign(w2 * columns.size(), 0.0);
+    sum_row(r, seen, place, [&](std::uint32_t q) { return place[q]; }, values.data(), columns.size());
+    PERIDOT_PETSC(MatSetValuesBlocked(target, 1, &row, static_cast<PetscInt>(columns.size()), columns.data(),
+                                      values.data(), ADD_VALUES));
   }
 }
 
@@ -585,6 +628,7 @@ void NewtonKrylov::setup() {
     PERIDOT_PETSC(MatSetSizes(pairs, points, points, global / width_, global / width_));
     PERIDOT_PETSC(MatSetType(pairs, MATPREALLOCATOR));
     PERIDOT_PETSC(MatSetUp(pairs));
+    find_family_members();
     add_family_stencil(pairs);
     PERIDOT_PETSC(MatAssemblyBegin(pairs, MAT_FINAL_ASSEMBLY));
     PERIDOT_PETSC(MatAssemblyEnd(pairs, MAT_FINAL_ASSEMBLY));

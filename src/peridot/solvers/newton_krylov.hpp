@@ -88,8 +88,10 @@ class NewtonKrylov final : public QuasiStatic {
   void assemble_bond_tangent();
   /// Per point, owned and ghost, 1 for each component that is an unknown of the system, 0 for the others.
   VectorField unknown_components() const;
+  /// For every point, owned or ghost, the owned families it belongs to (Petsc::member_*).
+  void find_family_members();
   /// Every pair of every owned family (the 2δ stencil of the assembled Jacobians) into `graph`, a matrix over the
-  /// unknown points, with zeros.
+  /// unknown points, with zeros: one row per point that a family reaches.
   void add_family_stencil(_p_Mat* graph);
   /// Adds every owned family's exact tangent blocks to `target` (ADD_VALUES), the unknowns' rows and columns
   /// only.
