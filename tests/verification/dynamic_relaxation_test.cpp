@@ -152,6 +152,11 @@ TEST(DynamicRelaxation, IterationLimitNamesAPieceThatCameApart) {
       pulled_bar("1e6", "", "1", "", "  - {node_set: held, x: \"-1e6\"}", "max_iterations: 5"));
   EXPECT_NE(balanced.find("raise solver.max_iterations"), std::string::npos) << balanced;
   EXPECT_EQ(balanced.find("come apart"), std::string::npos) << balanced;
+  // Nothing holds it along the bar: named as well.
+  EXPECT_NE(balanced.find("note that the supports do not hold every rigid motion, so the tangent is singular: 40 "
+                          "points (fragment of point 0 at (0.0005, 0, 0) m) are free to translate along x (no support at all)"),
+            std::string::npos)
+      << balanced;
 }
 
 // Pulled past its strength, the bar breaks at the first equilibrium: the check after breaking reports the loose

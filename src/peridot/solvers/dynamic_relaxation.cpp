@@ -90,12 +90,15 @@ void DynamicRelaxation::equilibrate() {
     }
     if (iteration >= max_iterations_) {
       std::string apart = unsupported_fragment();
-      if (apart.empty()) apart = free_rigid_motion();
+      if (apart.empty()) {
+        apart = "raise solver.max_iterations, loosen solver.tolerance or use more load_steps";
+        if (const std::string free = free_rigid_motion(); !free.empty()) apart += "; note that " + free;
+      }
       throw NumericalError(fmt::format(
           "dynamic relaxation did not converge in load step {} (time {:.6g} s, load factor {:.6g}): relative force "
           "residual {:.3e} after {} iterations, tolerance {:.3e}; {}",
           state.step + 1, state.time, load_factor_, residual_, iteration, tolerance_,
-          apart.empty() ? "raise solver.max_iterations, loosen solver.tolerance or use more load_steps" : apart));
+          apart));
     }
     double c = 0;
     if (iteration > 0) {

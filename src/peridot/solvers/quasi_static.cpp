@@ -264,10 +264,10 @@ std::string QuasiStatic::free_rigid_motion() {
   const auto& kind = sim_.loads().dof_kinds();
   const bool contact = sim_.has_contact();
   const std::size_t owned = sim_.num_owned();
-  const int dimension = std::min(3, std::max(2, sim_.problem().dimension));
+  const int dimension = sim_.problem().dimension;
   // The rigid motions of the deck's dimension: translations along its axes, rotations about the axes
-  // perpendicular to its plane (2D: about z), measured from the centre of the bodies' box, per its size.
-  const int modes = dimension == 3 ? 6 : 3;
+  // perpendicular to its plane (2D: about z; 1D: none), measured from the centre of the bodies' box, per its size.
+  const int modes = dimension == 3 ? 6 : dimension == 2 ? 3 : 1;
   double low[3], high[3];
   for (int d = 0; d < 3; ++d) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -294,7 +294,9 @@ std::string QuasiStatic::free_rigid_motion() {
       if (kind[k] == DofKind::free && !(contact && sim_.contact_force().data()[k] != 0)) continue;
       double phi[6] = {0, 0, 0, 0, 0, 0};
       phi[d] = 1;  // translation along d; rotation about axis a moves component d by (e_a × r)_d
-      if (dimension == 3) {
+      if (dimension == 1) {
+        // the translation alone
+      } else if (dimension == 3) {
         for (int axis = 0; axis < 3; ++axis) {
           const int next = (axis + 1) % 3, last = (axis + 2) % 3;
           phi[3 + axis] = d == next ? -r[last] : d == last ? r[next] : 0.0;
@@ -326,7 +328,7 @@ std::string QuasiStatic::free_rigid_motion() {
       for (int n = 0; n < modes; ++n) g[m][n] = f[6 + 6 * m + n], largest = std::max(largest, g[m][n]);
     std::vector<std::string> motions;
     if (largest == 0) {
-      motions.push_back("translate and rotate (no support at all)");
+      motions.push_back(dimension == 1 ? "translate along x (no support at all)" : "translate and rotate (no support at all)");
     } else {
       for (int m = 0; m < modes; ++m)
         for (int n = 0; n < modes; ++n) g[m][n] /= largest;
