@@ -1,18 +1,16 @@
 #include "peridot/solvers/family_tangent.hpp"
 
 #include <cmath>
+#include <string>
 
+#include "peridot/core/error.hpp"
 #include "peridot/materials/bond_loop.hpp"
 #include "peridot/materials/lps.hpp"
 #include "peridot/materials/pmb.hpp"
 
 namespace peridot {
 
-std::string_view model_without_exact_tangent(const ModelContext& ctx) {
-  for (const MaterialParams& p : ctx.params)
-    if (!is_model<Pmb>(p) && !is_model<Lps>(p)) return model_name(p.model);
-  return {};
-}
+bool has_exact_tangent(std::string_view model) { return model == Pmb::name || model == Lps::name; }
 
 void FamilyTangent::add_block(std::size_t r, std::size_t c, double k[9]) const {
   const auto bond = [&](std::size_t q, double weight) {  // weight × D of partner slot q
@@ -43,6 +41,7 @@ void family_tangent(const ModelContext& ctx, const double* u, std::size_t i, Fam
   const std::size_t block = static_cast<std::size_t>(ctx.disc->block[i]);
   const MaterialParams& p = ctx.params[block];
   const bool lps = is_model<Lps>(p);
+  PERIDOT_REQUIRE(lps || is_model<Pmb>(p), "family_tangent: no exact tangent for model " + std::string(model_name(p.model)));
   const double volume_i = ctx.disc->volume[i];
   const double thermal = bond_loop::thermal_stretch(ctx, i);
   out.points.assign(1, static_cast<std::uint32_t>(i));

@@ -14,14 +14,16 @@
 //   ω̃ = ω G (the surface correction's factor), e the mechanical extension (thermal stretch removed).
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "peridot/materials/model_context.hpp"
 
 namespace peridot {
 
-/// Whether every block's model has a closed-form tangent here (pmb, lps), or the name of the first that has not.
-std::string_view model_without_exact_tangent(const ModelContext& ctx);
+/// Whether the model of this name has a closed-form tangent here (pmb, lps): the deck refuses jacobian: exact
+/// for the others.
+bool has_exact_tangent(std::string_view model);
 
 /// One family's part of K = ∂R/∂u (N/m), in the compact form above: the bond blocks and, for lps, ρ and γ.
 struct FamilyTangent {
@@ -40,7 +42,7 @@ struct FamilyTangent {
 };
 
 /// Family i's part of K at the displacements u (owned and ghost points, 3 per point). i's block's model must
-/// have an exact tangent (model_without_exact_tangent).
+/// have an exact tangent (has_exact_tangent).
 void family_tangent(const ModelContext& ctx, const double* u, std::size_t i, FamilyTangent& out);
 
 }  // namespace peridot

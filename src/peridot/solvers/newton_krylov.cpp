@@ -71,10 +71,9 @@ SolverInfo NewtonKrylov::info() {
 
 void NewtonKrylov::check(const Problem& problem, DeckContext& context) {
   check_static(problem, context, name);
-  // The exact tangent is written for pmb and lps (solvers/family_tangent.hpp).
   if (const Parameters::Entry* jacobian = problem.solver.parameters.find("jacobian"); jacobian && jacobian->text == "exact")
     for (const MaterialSpec& m : problem.materials)
-      if (m.model != "pmb" && m.model != "lps")
+      if (!has_exact_tangent(m.model))
         context.error(jacobian->pos, "solver.jacobian",
                       fmt::format("jacobian: exact is the closed-form tangent of pmb and lps, and material '{}' is {}; "
                                   "use finite_difference (any model, assembled) or matrix_free",
