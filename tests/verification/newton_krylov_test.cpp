@@ -13,6 +13,7 @@
 #include <string>
 
 #include "peridot/deck/deck.hpp"
+#include "peridot/geometry/discretize.hpp"
 #include "peridot/solvers/dynamic_relaxation.hpp"
 #include "peridot/solvers/newton_krylov.hpp"
 #include "peridot/solvers/simulation.hpp"
@@ -294,6 +295,24 @@ solver: {type: implicit}
       << message;
   EXPECT_NE(message.find("deck.yaml:8:3: error: node_sets.block_constraint: is the name of the volume-constraint layer "
                          "of body 'block'; rename this node set"),
+            std::string::npos)
+      << message;
+  // Thinner than the spacing: no site in the layer, said where the body is.
+  const Problem thin = parse_deck(R"(discretization: {dimension: 2, plane: stress, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  steel: {model: lps, density: 7800, youngs_modulus: 200 GPa, poisson_ratio: 0.3}
+bodies:
+  block: {material: steel, volume_constraint: 0.5 mm, shape: {box: {min: [0, 0], max: [0.008, 0.006]}}}
+solver: {type: implicit}
+)",
+                                  "deck.yaml", ".");
+  message.clear();
+  try {
+    discretize(thin);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("deck.yaml:5:3: error: bodies.block.volume_constraint: the layer holds no lattice site"),
             std::string::npos)
       << message;
 }

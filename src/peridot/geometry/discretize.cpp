@@ -90,7 +90,7 @@ void fill_layer(const Problem& problem, std::int32_t block, std::vector<RawPoint
   const Vec3 origin = problem.lattice_origin;
   const BoundingBox box = body.shape->bounds(dim);
   const long steps = static_cast<long>(std::floor(reach / dx + 1e-9));
-  // The lattice offsets within the thickness (a site's distance to a site of the body is a multiple of them).
+  // The lattice offsets within the thickness: a site is in the layer when one of them leads to a site of the body.
   std::vector<std::array<long, 3>> offsets;
   for (long k = dim == 3 ? -steps : 0; k <= (dim == 3 ? steps : 0); ++k)
     for (long j = dim >= 2 ? -steps : 0; j <= (dim >= 2 ? steps : 0); ++j)
@@ -237,6 +237,10 @@ Discretization discretize(const Problem& problem) {
         layer.name = body.name + "_constraint";
         layer.block = static_cast<std::int32_t>(b);
         fill_layer(problem, static_cast<std::int32_t>(b), raw, layer.input_ids, rng);
+        if (layer.input_ids.empty())
+          errors.push_back({body.pos, "bodies." + body.name +
+                                          ".volume_constraint: the layer holds no lattice site (is it thinner than the "
+                                          "spacing, or inside other bodies?)"});
       }
     } else if (body.mesh) {
       const std::string key = body.mesh->format + ":" + body.mesh->file;  // bodies sharing a file read it once
