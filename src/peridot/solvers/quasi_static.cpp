@@ -323,6 +323,7 @@ std::string QuasiStatic::free_rigid_motion() {
   std::size_t free_fragments = 0;
   std::string first;
   for (const auto& [label, f] : merged) {
+    if (f[1] < 2) continue;  // a point without intact bonds has no stiffness: both solvers hold it where it is
     double g[6][6], values[6], vectors[6][6], largest = 0;
     for (int m = 0; m < modes; ++m)
       for (int n = 0; n < modes; ++n) g[m][n] = f[6 + 6 * m + n], largest = std::max(largest, g[m][n]);
