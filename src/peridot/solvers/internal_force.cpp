@@ -921,15 +921,20 @@ void force_pass(const ModelContext& ctx, const VectorField& u, const std::vector
     const BondFailure& fails = failure;
     const bool histories = any_history;
     const std::uint32_t* const partners = reverse;
-    std::vector<double> terms;  // the vector loop's per-point coefficients, where the model has some
-    if constexpr (vector_loops && std::is_same_v<Model, LpsPlastic>)
-      if (runs && !thermal) plastic_force_terms(mp, fields, ctx.disc->num_points(), terms);
+    // The vector loop's per-point coefficients, where the model has some: kept from pass to pass (per thread
+    // that calls the pass) so that a step allocates nothing; read inside the parallel region through `terms`.
+    const double* terms = nullptr;
+    const std::size_t points = ctx.disc->num_points();
+    if constexpr (vector_loops && std::is_same_v<Model, LpsPlastic>) {
+      static thread_local std::vector<double> plastic_terms;
+      if (runs && !thermal) plastic_force_terms(mp, fields, points, plastic_terms), terms = plastic_terms.data();
+    }
 #pragma omp parallel
     {
       RunScratch scratch;
       IntactScratch intact;
       SameBlockRun run = block_run(ctx, up, blocks[range.begin], break_limit, after_force ? infinity : break_limit);
-      if (!terms.empty()) run.point_terms[0] = terms.data(), run.point_terms[1] = terms.data() + terms.size() / 2;
+      if (terms != nullptr) run.point_terms[0] = terms, run.point_terms[1] = terms + points;
 #pragma omp for schedule(dynamic, chunk)
       for (std::size_t i = range.begin; i < range.end; ++i) {
         set_same_block_run(bonds, blocks, i, run);
@@ -1000,7 +1005,11 @@ bool for_each_point_run(const ModelContext& ctx, const VectorField& u, const Mat
   const auto& blocks = ctx.disc->block;
   const double infinity = std::numeric_limits<double>::infinity();
   const SameBlockRun block = block_run(ctx, u.data(), blocks[range.begin], infinity, infinity);
-  std::vector<std::uint8_t> interface(block.family_in_block ? 0 : range.end - range.begin, 0);
+  // Which points are interface points, kept from pass to pass (per calling thread): a step allocates nothing.
+  static thread_local std::vector<std::uint8_t> interface_flags;
+  interface_flags.assign(block.family_in_block ? 0 : range.end - range.begin, 0);
+  std::uint8_t* const interface = interface_flags.data();  // the workers' name for it (theirs would be their own)
+  const std::size_t flagged = interface_flags.size();
   const int chunk = points_per_chunk(range);
 #pragma omp parallel
   {
@@ -1016,13 +1025,13 @@ bool for_each_point_run(const ModelContext& ctx, const VectorField& u, const Mat
       point(i, run, IntactRun(run, bonds.neighbors.data(), bonds.broken.data(), intact));
     }
   }
-  for (std::size_t k = 0; k < interface.size();) {
+  for (std::size_t k = 0; k < flagged;) {
     if (!interface[k]) {
       ++k;
       continue;
     }
     std::size_t end = k;
-    while (end < interface.size() && interface[end]) ++end;
+    while (end < flagged && interface[end]) ++end;
     others(BlockRange{range.begin + k, range.begin + end});
     k = end;
   }

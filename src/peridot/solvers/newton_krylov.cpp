@@ -598,13 +598,8 @@ void NewtonKrylov::setup() {
   p.block.resize(disc.num_points());
   for (std::size_t i = 0; i < disc.num_points(); ++i) p.block[i] = static_cast<PetscInt>(index.get(i).x);
 
-  // Preallocation per block row: the point itself and its unknown neighbours, owned and ghost columns apart.
-  std::vector<PetscInt> on_rank(unknown_points_.size(), 1), off_rank(unknown_points_.size(), 0);
-  for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
-    const std::uint32_t i = unknown_points_[m];
-    for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
-      if (const std::uint32_t j = bonds.neighbors[b]; p.block[j] >= 0) ++(j < owned ? on_rank[m] : off_rank[m]);
-  }
+  // Preallocation per block row, owned and ghost columns apart (counted below for each stencil).
+  std::vector<PetscInt> on_rank(unknown_points_.size(), 0), off_rank(unknown_points_.size(), 0);
   double shortest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < owned; ++i)
     for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b) {
@@ -653,7 +648,6 @@ void NewtonKrylov::setup() {
       columns.insert(columns.end(), cols, cols + count);
       starts.push_back(static_cast<PetscInt>(columns.size()));
       const std::size_t m = static_cast<std::size_t>(row - first_point);
-      on_rank[m] = off_rank[m] = 0;
       for (PetscInt c = 0; c < count; ++c) ++(cols[c] >= first_point && cols[c] < last_point ? on_rank[m] : off_rank[m]);
       PERIDOT_PETSC(MatRestoreRow(graph, row, &count, &cols, nullptr));
     }
@@ -667,7 +661,13 @@ void NewtonKrylov::setup() {
     }
     PERIDOT_PETSC(MatAssemblyBegin(p.P, MAT_FINAL_ASSEMBLY));
     PERIDOT_PETSC(MatAssemblyEnd(p.P, MAT_FINAL_ASSEMBLY));
-  } else {
+  } else {  // the bond tangent: the point itself and its unknown neighbours
+    for (std::size_t m = 0; m < unknown_points_.size(); ++m) {
+      const std::uint32_t i = unknown_points_[m];
+      on_rank[m] = 1;
+      for (std::uint64_t b = bonds.offsets[i]; b < bonds.offsets[i + 1]; ++b)
+        if (const std::uint32_t j = bonds.neighbors[b]; p.block[j] >= 0) ++(j < owned ? on_rank[m] : off_rank[m]);
+    }
     PERIDOT_PETSC(MatXAIJSetPreallocation(p.P, width_, on_rank.data(), off_rank.data(), nullptr, nullptr));
   }
   PERIDOT_PETSC(MatSetOption(p.P, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
