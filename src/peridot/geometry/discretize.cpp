@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <sstream>
@@ -31,6 +32,19 @@ struct RawPoint {
   double volume;
   std::int32_t block;
   std::uint64_t morton;
+  std::uint64_t site = 0;  ///< lattice points: linear index in the problem's lattice extent
+  bool layer = false;      ///< a volume-constraint layer's point
+};
+
+/// Where lattice sites are made: every site, or (distributed) only those whose index along `axis` is in
+/// [first, last).
+struct Window {
+  int axis = 0;
+  long first = std::numeric_limits<long>::min(), last = std::numeric_limits<long>::max();
+  bool holds(long i, long j, long k) const {
+    const long along = axis == 0 ? i : axis == 1 ? j : k;
+    return along >= first && along < last;
+  }
 };
 
 // Interleaves the low 21 bits of three cell indices: points close in space get close codes.
@@ -47,6 +61,16 @@ std::uint64_t morton_code(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   return spread(a) | spread(b) << 1 | spread(c) << 2;
 }
 
+/// The lattice sites a shape body's bounding box, widened by `reach`, spans (one more on each side).
+void site_range(const Problem& problem, const BodySpec& body, double reach, long lo[3], long hi[3]) {
+  const BoundingBox box = body.shape->bounds(problem.dimension);
+  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = 0;
+  for (int d = 0; d < problem.dimension; ++d) {
+    lo[d] = static_cast<long>(std::floor((box.lo[d] - reach - problem.lattice_origin[d]) / problem.spacing - 0.5)) - 1;
+    hi[d] = static_cast<long>(std::ceil((box.hi[d] + reach - problem.lattice_origin[d]) / problem.spacing - 0.5)) + 1;
+  }
+}
+
 // A lattice site inside several bodies belongs to the first of them (bodies share one lattice).
 bool claimed_by_earlier_body(const Problem& problem, std::int32_t block, Vec3 p) {
   for (std::int32_t b = 0; b < block; ++b) {
@@ -56,39 +80,36 @@ bool claimed_by_earlier_body(const Problem& problem, std::int32_t block, Vec3 p)
   return false;
 }
 
-void fill_shape(const Problem& problem, std::int32_t block, std::vector<RawPoint>& out, std::uint64_t& rng) {
+void fill_shape(const Problem& problem, std::int32_t block, const LatticeExtent& extent, const Window& window,
+                std::vector<RawPoint>& out, std::uint64_t& rng) {
   const BodySpec& body = problem.bodies[block];
   const int dim = problem.dimension;
   const double dx = problem.spacing;
   const Vec3 origin = problem.lattice_origin;
-  const BoundingBox box = body.shape->bounds(dim);
-  long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (int d = 0; d < dim; ++d) {
-    lo[d] = static_cast<long>(std::floor((box.lo[d] - origin[d]) / dx - 0.5)) - 1;
-    hi[d] = static_cast<long>(std::ceil((box.hi[d] - origin[d]) / dx - 0.5)) + 1;
-  }
+  long lo[3], hi[3];
+  site_range(problem, body, 0, lo, hi);
   const double volume = std::pow(dx, dim) * problem.cross_section();
   for (long k = lo[2]; k <= hi[2]; ++k)
     for (long j = lo[1]; j <= hi[1]; ++j)
       for (long i = lo[0]; i <= hi[0]; ++i) {
+        if (!window.holds(i, j, k)) continue;
         Vec3 p{origin.x + (i + 0.5) * dx, dim >= 2 ? origin.y + (j + 0.5) * dx : 0.0, dim == 3 ? origin.z + (k + 0.5) * dx : 0.0};
         if (!body.shape->contains(p, dim) || claimed_by_earlier_body(problem, block, p)) continue;
         if (problem.jitter > 0)
           for (int d = 0; d < dim; ++d) p[d] += (2 * uniform01(rng) - 1) * problem.jitter * dx;
-        out.push_back({p, volume, block, 0});
+        out.push_back({p, volume, block, 0, extent.site(i, j, k), false});
       }
 }
 
 /// The volume-constraint layer of a shape body: the lattice sites outside every body's shape within
 /// body.volume_constraint of one of this body's own sites, with its material; their indices in `out` go to
 /// `layer`.
-void fill_layer(const Problem& problem, std::int32_t block, std::vector<RawPoint>& out, std::vector<std::uint32_t>& layer,
-                std::uint64_t& rng) {
+void fill_layer(const Problem& problem, std::int32_t block, const LatticeExtent& extent, const Window& window,
+                std::vector<RawPoint>& out, std::vector<std::uint32_t>& layer, std::uint64_t& rng) {
   const BodySpec& body = problem.bodies[block];
   const int dim = problem.dimension;
   const double dx = problem.spacing, reach = body.volume_constraint;
   const Vec3 origin = problem.lattice_origin;
-  const BoundingBox box = body.shape->bounds(dim);
   const long steps = static_cast<long>(std::floor(reach / dx + 1e-9));
   // The lattice offsets within the thickness: a site is in the layer when one of them leads to a site of the body.
   std::vector<std::array<long, 3>> offsets;
@@ -104,15 +125,13 @@ void fill_layer(const Problem& problem, std::int32_t block, std::vector<RawPoint
     return std::any_of(problem.bodies.begin(), problem.bodies.end(),
                        [&](const BodySpec& b) { return b.shape && b.shape->contains(q, dim); });
   };
-  long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (int d = 0; d < dim; ++d) {
-    lo[d] = static_cast<long>(std::floor((box.lo[d] - reach - origin[d]) / dx - 0.5)) - 1;
-    hi[d] = static_cast<long>(std::ceil((box.hi[d] + reach - origin[d]) / dx - 0.5)) + 1;
-  }
+  long lo[3], hi[3];
+  site_range(problem, body, reach, lo, hi);
   const double volume = std::pow(dx, dim) * problem.cross_section();
   for (long k = lo[2]; k <= hi[2]; ++k)
     for (long j = lo[1]; j <= hi[1]; ++j)
       for (long i = lo[0]; i <= hi[0]; ++i) {
+        if (!window.holds(i, j, k)) continue;
         Vec3 p = site(i, j, k);
         if (in_any_body(p)) continue;
         const bool near = std::any_of(offsets.begin(), offsets.end(), [&](const std::array<long, 3>& o) {
@@ -122,7 +141,7 @@ void fill_layer(const Problem& problem, std::int32_t block, std::vector<RawPoint
         if (problem.jitter > 0)
           for (int d = 0; d < dim; ++d) p[d] += (2 * uniform01(rng) - 1) * problem.jitter * dx;
         layer.push_back(static_cast<std::uint32_t>(out.size()));
-        out.push_back({p, volume, block, 0});
+        out.push_back({p, volume, block, 0, extent.site(i, j, k), true});
       }
 }
 
@@ -220,23 +239,86 @@ void read_point_file(const Problem& problem, const BodySpec& body, std::int32_t 
 
 }  // namespace
 
+bool generated_by_window(const Problem& problem) {
+  return problem.jitter == 0 &&
+         std::all_of(problem.bodies.begin(), problem.bodies.end(), [](const BodySpec& b) { return b.shape.has_value(); });
+}
+
+LatticeExtent lattice_extent(const Problem& problem) {
+  LatticeExtent e;
+  bool first = true;
+  for (const BodySpec& body : problem.bodies) {
+    if (!body.shape) continue;
+    long lo[3], hi[3];
+    site_range(problem, body, body.volume_constraint, lo, hi);
+    for (int d = 0; d < 3; ++d) {
+      e.lo[d] = first ? lo[d] : std::min(e.lo[d], lo[d]);
+      e.hi[d] = first ? hi[d] : std::max(e.hi[d], hi[d]);
+    }
+    first = false;
+  }
+  return e;
+}
+
+std::uint64_t morton_key(Vec3 x, Vec3 lo, double spacing, int dimension) {
+  auto cell = [&](int d) { return static_cast<std::uint32_t>(std::max(0.0, (x[d] - lo[d]) / spacing)); };
+  return morton_code(cell(0), cell(1), dimension == 3 ? cell(2) : 0);
+}
+
+double cell_side(double volume, const Problem& problem) {
+  const double cell = volume / problem.cross_section();
+  return problem.dimension == 3 ? std::cbrt(cell) : problem.dimension == 2 ? std::sqrt(cell) : cell;
+}
+
+LatticePoints discretize_window(const Problem& problem, int axis, long first, long last) {
+  PERIDOT_REQUIRE(generated_by_window(problem), "discretize_window: a body is not a shape on the lattice, or jittered");
+  check_size(problem);
+  const LatticeExtent extent = lattice_extent(problem);
+  const Window window{axis, first, last};
+  std::vector<RawPoint> raw;
+  std::uint64_t rng = problem.seed;  // unused: no jitter
+  for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
+    fill_shape(problem, static_cast<std::int32_t>(b), extent, window, raw, rng);
+    std::vector<std::uint32_t> layer;
+    if (problem.bodies[b].volume_constraint > 0) fill_layer(problem, static_cast<std::int32_t>(b), extent, window, raw, layer, rng);
+  }
+  LatticePoints out;
+  out.disc.dimension = problem.dimension;
+  for (const BodySpec& body : problem.bodies) out.disc.block_names.push_back(body.name);
+  out.disc.x.resize(raw.size());
+  out.disc.volume.resize(raw.size());
+  out.disc.block.resize(raw.size());
+  out.site.resize(raw.size());
+  out.layer.resize(raw.size());
+  for (std::size_t k = 0; k < raw.size(); ++k) {
+    out.disc.x.set(k, raw[k].x);
+    out.disc.volume[k] = raw[k].volume;
+    out.disc.block[k] = raw[k].block;
+    out.site[k] = raw[k].site;
+    out.layer[k] = raw[k].layer ? 1 : 0;
+  }
+  return out;
+}
+
 Discretization discretize(const Problem& problem) {
   std::vector<RawPoint> raw;
   std::uint64_t rng = problem.seed;
   std::vector<Diagnostic> errors;
   check_size(problem);
+  const LatticeExtent extent = lattice_extent(problem);
+  const Window everywhere;
   std::map<std::string, Mesh> meshes;
   std::vector<Discretization::MeshSet> mesh_sets;
   for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
     const BodySpec& body = problem.bodies[b];
     const std::size_t before = raw.size();
     if (body.shape) {
-      fill_shape(problem, static_cast<std::int32_t>(b), raw, rng);
+      fill_shape(problem, static_cast<std::int32_t>(b), extent, everywhere, raw, rng);
       if (body.volume_constraint > 0 && raw.size() > before) {
         Discretization::MeshSet& layer = mesh_sets.emplace_back();
         layer.name = body.name + "_constraint";
         layer.block = static_cast<std::int32_t>(b);
-        fill_layer(problem, static_cast<std::int32_t>(b), raw, layer.input_ids, rng);
+        fill_layer(problem, static_cast<std::int32_t>(b), extent, everywhere, raw, layer.input_ids, rng);
         if (layer.input_ids.empty())
           errors.push_back({body.pos, "bodies." + body.name +
                                           ".volume_constraint: the layer holds no lattice site (is it thinner than the "
@@ -268,14 +350,9 @@ Discretization discretize(const Problem& problem) {
   double min_spacing = 1e300;
   for (const RawPoint& p : raw) {
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], p.x[d]);
-    const double cell = p.volume / problem.cross_section();
-    double side = problem.dimension == 3 ? std::cbrt(cell) : problem.dimension == 2 ? std::sqrt(cell) : cell;
-    min_spacing = std::min(min_spacing, side);
+    min_spacing = std::min(min_spacing, cell_side(p.volume, problem));
   }
-  for (RawPoint& p : raw) {
-    auto cell = [&](int d) { return static_cast<std::uint32_t>(std::max(0.0, (p.x[d] - lo[d]) / min_spacing)); };
-    p.morton = morton_code(cell(0), cell(1), problem.dimension == 3 ? cell(2) : 0);
-  }
+  for (RawPoint& p : raw) p.morton = morton_key(p.x, lo, min_spacing, problem.dimension);
   std::vector<std::uint32_t> order(raw.size());
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {

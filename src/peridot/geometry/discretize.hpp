@@ -21,6 +21,45 @@ Discretization discretize(const Problem& problem);
 /// sorts points by block (and a rank's owned points keep that order, parallel/domain.hpp).
 std::vector<BlockRange> block_ranges(const Discretization& disc, std::size_t count = SIZE_MAX);
 
+// -- distributed generation (parallel/domain.hpp) ------------------------------------------------------------
+// A run whose bodies are all shapes on the lattice, without jitter, can be generated piece by piece: each rank
+// makes the sites of its slab of lattice planes only. What the whole-problem order needs of a point is then
+// derived from its site alone, so that every rank count gives the serial order and ids:
+//   generation order (the input id's order): block, then shape points before the body's volume-constraint
+//       layer, then the site's linear index (k, j, i raster: the order fill_shape visits them in);
+//   storage order (discretize's): block, then the Morton code of the point's cell (morton_key, from the
+//       lowest coordinate and the smallest spacing of all points), then generation order.
+
+/// Every lattice site any body may make (its bounding box widened by its volume-constraint layer), and the
+/// linear index of a site within it.
+struct LatticeExtent {
+  long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};  ///< inclusive
+  long count(int d) const { return hi[d] - lo[d] + 1; }
+  std::uint64_t site(long i, long j, long k) const {
+    return (static_cast<std::uint64_t>(k - lo[2]) * static_cast<std::uint64_t>(count(1)) + static_cast<std::uint64_t>(j - lo[1])) *
+               static_cast<std::uint64_t>(count(0)) + static_cast<std::uint64_t>(i - lo[0]);
+  }
+};
+
+/// Whether discretize_window can make this problem (every body a shape, no jitter).
+bool generated_by_window(const Problem& problem);
+LatticeExtent lattice_extent(const Problem& problem);
+
+struct LatticePoints {
+  Discretization disc;               ///< x, volume, block of the window's points (no input id, no mesh set)
+  std::vector<std::uint64_t> site;   ///< each point's LatticeExtent::site
+  std::vector<std::uint8_t> layer;   ///< 1 for a volume-constraint layer's point
+};
+/// The points of the sites whose index along `axis` is in [first, last), in generation order: the same points
+/// (same bits) discretize() makes there. Checks the problem's size as discretize() does; an empty body is the
+/// caller's to find (it needs every window).
+LatticePoints discretize_window(const Problem& problem, int axis, long first, long last);
+
+/// The storage-order key of a point: the Morton code of its cell on a grid of `spacing` from `lo`.
+std::uint64_t morton_key(Vec3 x, Vec3 lo, double spacing, int dimension);
+/// The lattice spacing a point of volume V stands for (the side of its cell).
+double cell_side(double volume, const Problem& problem);
+
 /// Deterministic uniform deviate in [0, 1) from a 64-bit state (splitmix64), identical on every platform.
 double uniform01(std::uint64_t& state);
 

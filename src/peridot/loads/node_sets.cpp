@@ -12,19 +12,34 @@ namespace peridot {
 
 namespace {
 
-std::vector<std::uint32_t> read_ids(const NodeSetSpec& spec, const Discretization& disc) {
+/// Input id (the order in which points were generated or read) → storage index of the points `disc` holds.
+class StorageOf {
+ public:
+  explicit StorageOf(const Discretization& disc) {
+    for (std::size_t i = 0; i < disc.num_points(); ++i) pairs_.push_back({disc.input_id[i], static_cast<std::uint32_t>(i)});
+    std::sort(pairs_.begin(), pairs_.end());
+  }
+  /// Appends the point of input id `id` to `points`, when this discretization holds it.
+  void add(std::uint32_t id, std::vector<std::uint32_t>& points) const {
+    const auto found = std::lower_bound(pairs_.begin(), pairs_.end(), std::pair{id, std::uint32_t{0}});
+    if (found != pairs_.end() && found->first == id) points.push_back(found->second);
+  }
+
+ private:
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
+};
+
+std::vector<std::uint32_t> read_ids(const NodeSetSpec& spec, const Discretization& disc, std::size_t all_points) {
   std::ifstream in(spec.ids_file);
   if (!in) throw InputError(spec.pos, "node_sets." + spec.name + ": cannot open ids_file '" + spec.ids_file + "'");
-  // Ids refer to the order in which points were generated or read; map them to storage order.
-  std::vector<std::uint32_t> storage_of(disc.num_points());
-  for (std::size_t i = 0; i < disc.num_points(); ++i) storage_of[disc.input_id[i]] = static_cast<std::uint32_t>(i);
+  const StorageOf storage_of(disc);
   std::vector<std::uint32_t> points;
   long long id;
   while (in >> id) {
-    if (id < 0 || static_cast<std::size_t>(id) >= disc.num_points())
+    if (id < 0 || static_cast<std::size_t>(id) >= all_points)
       throw InputError(spec.pos, "node_sets." + spec.name + ": id " + std::to_string(id) + " in '" + spec.ids_file +
-                                     "' is outside 0 … " + std::to_string(disc.num_points() - 1));
-    points.push_back(storage_of[id]);
+                                     "' is outside 0 … " + std::to_string(all_points - 1));
+    storage_of.add(static_cast<std::uint32_t>(id), points);
   }
   if (!in.eof()) throw InputError(spec.pos, "node_sets." + spec.name + ": '" + spec.ids_file + "' holds a non-integer");
   return points;
@@ -67,17 +82,25 @@ std::vector<std::uint32_t> select_from_mesh(const NodeSetSpec& spec, const Discr
                                            "have: {}",
                                            spec.name, spec.bodies.empty() ? "the bodies" : "its bodies", spec.mesh_set,
                                            known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
-  std::vector<std::uint32_t> storage_of(disc.num_points());
-  for (std::size_t i = 0; i < disc.num_points(); ++i) storage_of[disc.input_id[i]] = static_cast<std::uint32_t>(i);
+  const StorageOf storage_of(disc);
   std::vector<std::uint32_t> points;
   for (const Discretization::MeshSet* set : chosen)
-    for (std::uint32_t id : set->input_ids) points.push_back(storage_of[id]);
+    for (std::uint32_t id : set->input_ids) storage_of.add(id, points);
   return points;
 }
 
 }  // namespace
 
-std::vector<NodeSet> build_node_sets(const Problem& problem, const Discretization& disc) {
+Diagnostic empty_node_set_error(const NodeSetSpec& spec) {
+  return {spec.pos, "node_sets." + spec.name +
+                        (spec.mesh_set.empty() ? ": selects no point (check its shape against the bodies)"
+                                               : ": mesh set '" + spec.mesh_set + "' selects no point of " +
+                                                     (spec.bodies.empty() ? "the bodies" : "its bodies"))};
+}
+
+std::vector<NodeSet> build_node_sets(const Problem& problem, const Discretization& disc, std::size_t all_points) {
+  const bool part = all_points > 0;
+  if (!part) all_points = disc.num_points();
   std::vector<NodeSet> sets;
   std::vector<Diagnostic> errors;
   for (const NodeSetSpec& spec : problem.node_sets) {
@@ -85,18 +108,14 @@ std::vector<NodeSet> build_node_sets(const Problem& problem, const Discretizatio
     try {
       set.points = spec.shape               ? select_in_shape(spec, problem, disc)
                    : !spec.mesh_set.empty() ? select_from_mesh(spec, disc)
-                                            : read_ids(spec, disc);
+                                            : read_ids(spec, disc, all_points);
     } catch (const InputError& e) {
       errors.insert(errors.end(), e.diagnostics().begin(), e.diagnostics().end());
       continue;
     }
     std::sort(set.points.begin(), set.points.end());
     set.points.erase(std::unique(set.points.begin(), set.points.end()), set.points.end());
-    if (set.points.empty())
-      errors.push_back({spec.pos, "node_sets." + spec.name +
-                                      (spec.mesh_set.empty() ? ": selects no point (check its shape against the bodies)"
-                                                             : ": mesh set '" + spec.mesh_set + "' selects no point of " +
-                                                                   (spec.bodies.empty() ? "the bodies" : "its bodies"))});
+    if (set.points.empty() && !part) errors.push_back(empty_node_set_error(spec));
     sets.push_back(std::move(set));
   }
   if (!errors.empty()) throw InputError(errors);

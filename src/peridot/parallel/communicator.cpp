@@ -103,21 +103,6 @@ std::vector<int> Communicator::offsets(const std::vector<int>& count) {
   return displ;
 }
 
-std::vector<std::uint32_t> Communicator::all_to_all(const std::vector<std::uint32_t>& values,
-                                                    const std::vector<int>& count, std::vector<int>& received) const {
-  if (serial()) {
-    received = count;
-    return values;
-  }
-  received.assign(static_cast<std::size_t>(size_), 0);
-  MPI_Alltoall(count.data(), 1, MPI_INT, received.data(), 1, MPI_INT, comm_);
-  const std::vector<int> send_displ = offsets(count), receive_displ = offsets(received);
-  std::vector<std::uint32_t> out(static_cast<std::size_t>(receive_displ.back() + received.back()));
-  MPI_Alltoallv(values.data(), count.data(), send_displ.data(), MPI_UINT32_T, out.data(), received.data(),
-                receive_displ.data(), MPI_UINT32_T, comm_);
-  return out;
-}
-
 void Communicator::barrier() const {
   if (!serial()) MPI_Barrier(comm_);
 }

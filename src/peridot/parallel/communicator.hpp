@@ -41,8 +41,8 @@ class Communicator {
 
   /// Personalised exchange: `values` holds count[r] values for each rank r, rank after rank; returns what
   /// every rank sent to this one, source after source, and its counts per source in `received`.
-  std::vector<std::uint32_t> all_to_all(const std::vector<std::uint32_t>& values, const std::vector<int>& count,
-                                        std::vector<int>& received) const;
+  template <class T>
+  std::vector<T> all_to_all(const std::vector<T>& values, const std::vector<int>& count, std::vector<int>& received) const;
   /// Offsets of consecutive groups of the given sizes (exclusive prefix sum).
   static std::vector<int> offsets(const std::vector<int>& count);
 
@@ -78,6 +78,23 @@ template <> inline MPI_Datatype mpi_type<double>() { return MPI_DOUBLE; }
 template <> inline MPI_Datatype mpi_type<std::uint32_t>() { return MPI_UINT32_T; }
 template <> inline MPI_Datatype mpi_type<std::int32_t>() { return MPI_INT32_T; }
 template <> inline MPI_Datatype mpi_type<unsigned char>() { return MPI_UNSIGNED_CHAR; }
+template <> inline MPI_Datatype mpi_type<std::uint64_t>() { return MPI_UINT64_T; }
+
+template <class T>
+std::vector<T> Communicator::all_to_all(const std::vector<T>& values, const std::vector<int>& count,
+                                        std::vector<int>& received) const {
+  if (serial()) {
+    received = count;
+    return values;
+  }
+  received.assign(static_cast<std::size_t>(size_), 0);
+  MPI_Alltoall(count.data(), 1, MPI_INT, received.data(), 1, MPI_INT, comm_);
+  const std::vector<int> send_displ = offsets(count), receive_displ = offsets(received);
+  std::vector<T> out(static_cast<std::size_t>(receive_displ.back() + received.back()));
+  MPI_Alltoallv(values.data(), count.data(), send_displ.data(), mpi_type<T>(), out.data(), received.data(),
+                receive_displ.data(), mpi_type<T>(), comm_);
+  return out;
+}
 
 template <class T>
 std::vector<T> Communicator::gather(const std::vector<T>& local) const {

@@ -1,54 +1,58 @@
 #include "peridot/parallel/domain.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 
 #include "peridot/core/error.hpp"
+#include "peridot/geometry/discretize.hpp"
+#include "peridot/parallel/global_order.hpp"
 #include "peridot/parallel/partition.hpp"
 
 namespace peridot {
 
-LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options,
-                      PartitionMethod method) {
-  const std::size_t n = global.num_points();
-  const std::size_t begin = slice_begin(n, comm.rank(), comm.size()), end = slice_begin(n, comm.rank() + 1, comm.size());
-  const std::vector<int> owner = partition_points(comm, global, count_bonds(global, options, begin, end), method);
+namespace {
 
+/// This rank's domain from a set of points `all` (the whole problem, or the rank's owned points and its
+/// candidates for ghosts) holding every partner of the owned points: global_of(t) and owner_of(t) of each,
+/// `owned` (indices into `all`, increasing global index) and their families (neighbours: indices into `all`,
+/// in increasing global index).
+template <class GlobalOf, class OwnerOf>
+LocalDomain assemble(const Communicator& comm, const Discretization& all, const std::vector<std::uint32_t>& owned,
+                     const BondList& families, GlobalOf&& global_of, OwnerOf&& owner_of) {
   LocalDomain d;
-  std::vector<std::uint32_t> owned;
-  for (std::size_t i = 0; i < n; ++i)
-    if (owner[i] == comm.rank()) owned.push_back(static_cast<std::uint32_t>(i));
-  const BondList families = build_neighborhood(global, options, owned);
-
   // Ghosts: partners owned elsewhere, grouped by owner rank, increasing global index within a group.
   std::vector<std::uint32_t> ghosts;
   for (std::uint32_t j : families.neighbors)
-    if (owner[j] != comm.rank()) ghosts.push_back(j);
+    if (owner_of(j) != comm.rank()) ghosts.push_back(j);
   std::sort(ghosts.begin(), ghosts.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return owner[a] != owner[b] ? owner[a] < owner[b] : a < b;
+    return owner_of(a) != owner_of(b) ? owner_of(a) < owner_of(b) : global_of(a) < global_of(b);
   });
   ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
   std::vector<int> ghost_owner;
-  for (std::uint32_t g : ghosts) ghost_owner.push_back(owner[g]);
+  for (std::uint32_t g : ghosts) ghost_owner.push_back(owner_of(g));
 
   d.owned = owned.size();
-  d.global_index = owned;
-  d.global_index.insert(d.global_index.end(), ghosts.begin(), ghosts.end());
-  const std::size_t local = d.global_index.size();
-  std::vector<std::uint32_t> local_of(n, UINT32_MAX);
-  for (std::size_t l = 0; l < local; ++l) local_of[d.global_index[l]] = static_cast<std::uint32_t>(l);
+  std::vector<std::uint32_t> source = owned;  // local → index into `all`
+  source.insert(source.end(), ghosts.begin(), ghosts.end());
+  const std::size_t local = source.size();
+  std::vector<std::uint32_t> local_of(all.num_points(), UINT32_MAX);
+  for (std::size_t l = 0; l < local; ++l) local_of[source[l]] = static_cast<std::uint32_t>(l);
 
-  d.disc.dimension = global.dimension;
-  d.disc.block_names = global.block_names;
+  d.disc.dimension = all.dimension;
+  d.disc.block_names = all.block_names;
   d.disc.x.resize(local);
   d.disc.volume.resize(local);
   d.disc.block.resize(local);
   d.disc.input_id.resize(local);
+  d.global_index.resize(local);
   for (std::size_t l = 0; l < local; ++l) {
-    const std::uint32_t g = d.global_index[l];
-    d.disc.x.set(l, global.x.get(g));
-    d.disc.volume[l] = global.volume[g];
-    d.disc.block[l] = global.block[g];
-    d.disc.input_id[l] = global.input_id.empty() ? g : global.input_id[g];
+    const std::uint32_t t = source[l];
+    d.global_index[l] = global_of(t);
+    d.disc.x.set(l, all.x.get(t));
+    d.disc.volume[l] = all.volume[t];
+    d.disc.block[l] = all.block[t];
+    d.disc.input_id[l] = all.input_id.empty() ? t : all.input_id[t];
   }
 
   d.bonds.offsets.assign(local + 1, families.offsets.back());
@@ -59,12 +63,248 @@ LocalDomain decompose(const Communicator& comm, const Discretization& global, co
   // Each owner is asked for the points this rank holds as ghosts: one global index per ghost.
   std::vector<int> count(static_cast<std::size_t>(comm.size()), 0);
   for (int r : ghost_owner) ++count[r];
-  d.halo = Halo::serve(comm, d.owned, ghosts, count, 1, [&](const std::uint32_t* global) {
-    const auto found = std::lower_bound(owned.begin(), owned.end(), *global);
-    PERIDOT_REQUIRE(found != owned.end() && *found == *global, "a ghost was asked of a rank that does not own it");
-    return static_cast<std::uint32_t>(found - owned.begin());
+  std::vector<std::uint32_t> requests(ghosts.size());
+  for (std::size_t g = 0; g < ghosts.size(); ++g) requests[g] = global_of(ghosts[g]);
+  const auto owned_begin = d.global_index.begin(), owned_end = owned_begin + static_cast<std::ptrdiff_t>(d.owned);
+  d.halo = Halo::serve(comm, d.owned, requests, count, 1, [&](const std::uint32_t* global) {
+    const auto found = std::lower_bound(owned_begin, owned_end, *global);
+    PERIDOT_REQUIRE(found != owned_end && *found == *global, "a ghost was asked of a rank that does not own it");
+    return static_cast<std::uint32_t>(found - owned_begin);
   });
   d.ghost_owner = std::move(ghost_owner);
+  return d;
+}
+
+}  // namespace
+
+LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options,
+                      PartitionMethod method) {
+  const std::size_t n = global.num_points();
+  const std::size_t begin = slice_begin(n, comm.rank(), comm.size()), end = slice_begin(n, comm.rank() + 1, comm.size());
+  const std::vector<int> owner = partition_points(comm, global, count_bonds(global, options, begin, end), method);
+  std::vector<std::uint32_t> owned;
+  for (std::size_t i = 0; i < n; ++i)
+    if (owner[i] == comm.rank()) owned.push_back(static_cast<std::uint32_t>(i));
+  const BondList families = build_neighborhood(global, options, owned);
+  LocalDomain d = assemble(comm, global, owned, families, [](std::uint32_t t) { return t; },
+                           [&](std::uint32_t t) { return owner[t]; });
+  d.global_points = n;
+  return d;
+}
+
+namespace {
+
+/// Points travelling between ranks: four integers and four doubles each.
+struct PointPacket {
+  std::vector<std::uint32_t> ints;  ///< global index, input id, block, layer flag
+  std::vector<double> reals;        ///< x, y, z, volume
+  void add(std::uint32_t global, std::uint32_t input, std::int32_t block, std::uint8_t layer, Vec3 x, double volume) {
+    ints.insert(ints.end(), {global, input, static_cast<std::uint32_t>(block), layer});
+    reals.insert(reals.end(), {x.x, x.y, x.z, volume});
+  }
+  std::size_t size() const { return ints.size() / 4; }
+};
+
+/// Sends the points of `out` (count[r] to rank r, rank after rank) and returns those received with the rank
+/// each came from.
+PointPacket send_points(const Communicator& comm, const PointPacket& out, const std::vector<int>& count,
+                        std::vector<int>& source) {
+  std::vector<int> int_count(count.size()), real_count(count.size()), received;
+  for (std::size_t r = 0; r < count.size(); ++r) int_count[r] = real_count[r] = 4 * count[r];
+  PointPacket in;
+  in.ints = comm.all_to_all(out.ints, int_count, received);
+  in.reals = comm.all_to_all(out.reals, real_count, received);
+  source.clear();
+  for (std::size_t r = 0; r < received.size(); ++r) source.insert(source.end(), static_cast<std::size_t>(received[r] / 4), static_cast<int>(r));
+  return in;
+}
+
+}  // namespace
+
+LocalDomain decompose_generated(const Communicator& comm, const Problem& problem, const NeighborhoodOptions& options,
+                                PartitionMethod method) {
+  const int dim = problem.dimension, ranks = comm.size();
+  const double dx = problem.spacing;
+  // 1. This rank's slab of planes along the longest axis, and the points one reach beyond it.
+  const LatticeExtent extent = lattice_extent(problem);
+  int axis = 0;
+  for (int d = 1; d < dim; ++d)
+    if (extent.count(d) > extent.count(axis)) axis = d;
+  const long planes = extent.count(axis);
+  const long first = extent.lo[axis] + planes * comm.rank() / ranks, last = extent.lo[axis] + planes * (comm.rank() + 1) / ranks;
+  const double max_horizon = *std::max_element(options.horizon_of_block.begin(), options.horizon_of_block.end());
+  // Every bond the neighbour search admits (horizon, partial-volume ring, its round-off allowance) is shorter.
+  const double reach = (max_horizon + (options.bond_beyond_horizon ? options.partial_volume_radius : 0.0)) * (1 + 1e-6);
+  const long reach_planes = static_cast<long>(std::ceil(reach / dx)) + 1;
+  LatticePoints made = discretize_window(problem, axis, first - reach_planes, last + reach_planes);
+  const std::size_t made_count = made.disc.num_points();
+  auto along = [&](std::size_t k) {  // the site's index along the axis
+    std::uint64_t site = made.site[k];
+    long index[3];
+    for (int d = 0; d < 3; ++d) {
+      index[d] = static_cast<long>(site % static_cast<std::uint64_t>(extent.count(d))) + extent.lo[d];
+      site /= static_cast<std::uint64_t>(extent.count(d));
+    }
+    return index[axis];
+  };
+  // Slab points first, then the others (kept in generation order within each).
+  std::vector<std::uint32_t> order;
+  for (std::size_t k = 0; k < made_count; ++k)
+    if (along(k) >= first && along(k) < last) order.push_back(static_cast<std::uint32_t>(k));
+  const std::size_t mine = order.size();
+  for (std::size_t k = 0; k < made_count; ++k)
+    if (along(k) < first || along(k) >= last) order.push_back(static_cast<std::uint32_t>(k));
+  Discretization slab;
+  slab.dimension = dim;
+  slab.block_names = made.disc.block_names;
+  slab.x.resize(made_count);
+  slab.volume.resize(made_count);
+  slab.block.resize(made_count);
+  std::vector<std::uint64_t> site(mine);
+  std::vector<std::uint8_t> layer(mine);
+  for (std::size_t k = 0; k < made_count; ++k) {
+    const std::uint32_t from = order[k];
+    slab.x.set(k, made.disc.x.get(from));
+    slab.volume[k] = made.disc.volume[from];
+    slab.block[k] = made.disc.block[from];
+    if (k < mine) site[k] = made.site[from], layer[k] = made.layer[from];
+  }
+  made = LatticePoints{};
+  const std::vector<std::uint64_t> bond_count = count_bonds(slab, options, 0, mine);
+
+  // Empty bodies and layers, from every slab's count.
+  const std::size_t blocks = problem.bodies.size();
+  std::vector<Diagnostic> errors;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    std::uint64_t points = 0, layer_points = 0;
+    for (std::size_t k = 0; k < mine; ++k)
+      if (slab.block[k] == static_cast<std::int32_t>(b)) (layer[k] ? layer_points : points) += 1;
+    points = comm.sum(points);
+    layer_points = comm.sum(layer_points);
+    const BodySpec& body = problem.bodies[b];
+    if (points == 0) errors.push_back({body.pos, "bodies." + body.name + ": the body contains no point (is it smaller than the spacing?)"});
+    else if (body.volume_constraint > 0 && layer_points == 0)
+      errors.push_back({body.pos, "bodies." + body.name +
+                                      ".volume_constraint: the layer holds no lattice site (is it thinner than the "
+                                      "spacing, or inside other bodies?)"});
+  }
+  if (!errors.empty()) throw InputError(errors);
+
+  // 2. Storage order and generation order over all slabs.
+  const std::uint64_t total = comm.sum(static_cast<std::uint64_t>(mine));
+  PERIDOT_REQUIRE(total <= UINT32_MAX, "more than 2^32 points: global indices need 64 bits");
+  Vec3 lo{1e300, 1e300, 1e300};
+  double min_spacing = 1e300;
+  for (std::size_t k = 0; k < mine; ++k) {
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], slab.x(k, d));
+    min_spacing = std::min(min_spacing, cell_side(slab.volume[k], problem));
+  }
+  for (int d = 0; d < 3; ++d) lo[d] = comm.min(lo[d]);
+  min_spacing = comm.min(min_spacing);
+  std::vector<OrderKey> key(mine);
+  for (std::size_t k = 0; k < mine; ++k) {
+    const auto block = static_cast<std::uint64_t>(slab.block[k]);
+    key[k] = {block, morton_key(slab.x.get(k), lo, min_spacing, dim), std::uint64_t{layer[k]} << 62 | site[k]};
+  }
+  const std::vector<std::uint64_t> global = global_ranks(comm, key);
+  for (std::size_t k = 0; k < mine; ++k) key[k] = {static_cast<std::uint64_t>(slab.block[k]), layer[k], site[k]};
+  const std::vector<std::uint64_t> input = global_ranks(comm, key);
+  key = {};
+
+  // 3. Owners; every slab point goes to its owner.
+  std::vector<std::uint32_t> slab_global(global.begin(), global.end());
+  Discretization slab_points;  // the slab's own points, for Zoltan
+  slab_points.dimension = dim;
+  slab_points.x.resize(mine);
+  slab_points.volume.assign(slab.volume.begin(), slab.volume.begin() + static_cast<std::ptrdiff_t>(mine));
+  for (std::size_t k = 0; k < mine; ++k) slab_points.x.set(k, slab.x.get(k));
+  const std::vector<int> owner = partition_local_points(comm, slab_points, slab_global, bond_count, method);
+  slab_points = Discretization{};
+  std::vector<std::uint32_t> by_owner(mine);
+  std::iota(by_owner.begin(), by_owner.end(), 0u);
+  std::stable_sort(by_owner.begin(), by_owner.end(), [&](std::uint32_t a, std::uint32_t b) { return owner[a] < owner[b]; });
+  std::vector<int> count(static_cast<std::size_t>(ranks), 0), source;
+  PointPacket out;
+  for (std::uint32_t k : by_owner) {
+    ++count[static_cast<std::size_t>(owner[k])];
+    out.add(slab_global[k], static_cast<std::uint32_t>(input[k]), slab.block[k], layer[k], slab.x.get(k), slab.volume[k]);
+  }
+  slab = Discretization{};
+  PointPacket owned = send_points(comm, out, count, source);
+  out = PointPacket{};
+
+  // 4. Candidates for ghosts: every other rank's points within a reach of this rank's owned points.
+  Vec3 box_lo{1e300, 1e300, 1e300}, box_hi{-1e300, -1e300, -1e300};
+  for (std::size_t k = 0; k < owned.size(); ++k)
+    for (int d = 0; d < 3; ++d) {
+      box_lo[d] = std::min(box_lo[d], owned.reals[4 * k + d] - reach);
+      box_hi[d] = std::max(box_hi[d], owned.reals[4 * k + d] + reach);
+    }
+  const std::vector<double> boxes = comm.all_gather(std::vector<double>{box_lo.x, box_lo.y, box_lo.z, box_hi.x, box_hi.y, box_hi.z});
+  std::fill(count.begin(), count.end(), 0);
+  for (int r = 0; r < ranks; ++r) {
+    if (r == comm.rank()) continue;
+    const double* box = boxes.data() + 6 * r;
+    for (std::size_t k = 0; k < owned.size(); ++k) {
+      bool inside = true;
+      for (int d = 0; d < 3; ++d) inside = inside && owned.reals[4 * k + d] >= box[d] && owned.reals[4 * k + d] <= box[3 + d];
+      if (!inside) continue;
+      ++count[static_cast<std::size_t>(r)];
+      out.ints.insert(out.ints.end(), owned.ints.begin() + static_cast<std::ptrdiff_t>(4 * k), owned.ints.begin() + static_cast<std::ptrdiff_t>(4 * k + 4));
+      out.reals.insert(out.reals.end(), owned.reals.begin() + static_cast<std::ptrdiff_t>(4 * k), owned.reals.begin() + static_cast<std::ptrdiff_t>(4 * k + 4));
+    }
+  }
+  std::vector<int> candidate_owner;
+  const PointPacket candidates = send_points(comm, out, count, candidate_owner);
+  out = PointPacket{};
+
+  // Owned points and candidates in increasing global index: a family built over them is sorted as the serial one.
+  const std::size_t owned_count = owned.size(), all_count = owned_count + candidates.size();
+  auto packet_of = [&](std::size_t t) -> std::pair<const PointPacket*, std::size_t> {
+    return t < owned_count ? std::pair{&owned, t} : std::pair{&candidates, t - owned_count};
+  };
+  std::vector<std::uint32_t> sorted(all_count);
+  std::iota(sorted.begin(), sorted.end(), 0u);
+  auto global_of_packet = [&](std::size_t t) { const auto [p, k] = packet_of(t); return p->ints[4 * k]; };
+  std::sort(sorted.begin(), sorted.end(), [&](std::uint32_t a, std::uint32_t b) { return global_of_packet(a) < global_of_packet(b); });
+  Discretization all;
+  all.dimension = dim;
+  for (const BodySpec& body : problem.bodies) all.block_names.push_back(body.name);
+  all.x.resize(all_count);
+  all.volume.resize(all_count);
+  all.block.resize(all_count);
+  all.input_id.resize(all_count);
+  std::vector<std::uint32_t> all_global(all_count);
+  std::vector<int> all_owner(all_count);
+  std::vector<std::uint8_t> all_layer(all_count);
+  std::vector<std::uint32_t> owned_in_all;
+  for (std::size_t t = 0; t < all_count; ++t) {
+    const auto [p, k] = packet_of(sorted[t]);
+    all_global[t] = p->ints[4 * k];
+    PERIDOT_REQUIRE(t == 0 || all_global[t] > all_global[t - 1], "a point reached a rank twice");
+    all.input_id[t] = p->ints[4 * k + 1];
+    all.block[t] = static_cast<std::int32_t>(p->ints[4 * k + 2]);
+    all_layer[t] = static_cast<std::uint8_t>(p->ints[4 * k + 3]);
+    all.x.set(t, Vec3{p->reals[4 * k], p->reals[4 * k + 1], p->reals[4 * k + 2]});
+    all.volume[t] = p->reals[4 * k + 3];
+    all_owner[t] = sorted[t] < owned_count ? comm.rank() : candidate_owner[sorted[t] - owned_count];
+    if (sorted[t] < owned_count) owned_in_all.push_back(static_cast<std::uint32_t>(t));
+  }
+  const BondList families = build_neighborhood(all, options, owned_in_all);
+  LocalDomain d = assemble(comm, all, owned_in_all, families, [&](std::uint32_t t) { return all_global[t]; },
+                           [&](std::uint32_t t) { return all_owner[t]; });
+  d.global_points = total;
+  // The volume-constraint layers, by input id, over the rank's points.
+  for (std::size_t b = 0; b < blocks; ++b) {
+    if (!(problem.bodies[b].volume_constraint > 0)) continue;
+    Discretization::MeshSet& set = d.disc.mesh_sets.emplace_back();
+    set.name = problem.bodies[b].name + "_constraint";
+    set.block = static_cast<std::int32_t>(b);
+    for (std::size_t l = 0; l < d.global_index.size(); ++l) {
+      const auto t = static_cast<std::size_t>(std::lower_bound(all_global.begin(), all_global.end(), d.global_index[l]) - all_global.begin());
+      if (all_layer[t] && all.block[t] == static_cast<std::int32_t>(b)) set.input_ids.push_back(d.disc.input_id[l]);
+    }
+  }
   return d;
 }
 

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "peridot/deck/problem.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
 #include "peridot/parallel/halo.hpp"
 #include "peridot/state/fields.hpp"
@@ -24,11 +25,28 @@ struct LocalDomain {
   std::vector<std::uint32_t> global_index;  ///< local → global point index
   std::vector<int> ghost_owner;             ///< owner rank of ghost owned + g
   Halo halo;
+  std::size_t global_points = 0;            ///< of all ranks
 };
 
 /// Partitions the global discretization and builds this rank's domain. Collective.
 LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options,
                       PartitionMethod method = PartitionMethod::rcb);
+
+/// The same domain (the same owned points, families and ghosts, in the same order, with the serial global
+/// indices and input ids) without any rank holding the whole problem, for the problems
+/// geometry/discretize.hpp can generate by window:
+///  1. rank r makes the lattice planes of its slab along the longest axis, plus one reach (δ + r) of planes
+///     on each side, and counts the bonds of its slab's points;
+///  2. the serial storage order and generation order are found from the points' sites (global_order.hpp):
+///     the global index and the input id;
+///  3. Zoltan partitions the slabs' points by bond count; each point moves once, to its owner;
+///  4. each owner's bounding box widened by the reach is sent to every rank, which sends back its points in
+///     that box: the candidates for ghosts, from which the owned points' families are built.
+/// The volume-constraint layers are the discretization's mesh sets (<body>_constraint), by input id, over
+/// the rank's points (owned and ghosts). Throws InputError (on every rank) for an empty body or layer.
+/// Collective.
+LocalDomain decompose_generated(const Communicator& comm, const Problem& problem, const NeighborhoodOptions& options,
+                                PartitionMethod method = PartitionMethod::rcb);
 
 /// For the models that read their partner's bond (history, correspondence weights): fills
 /// domain.bonds.reverse — the local bond j → i where j is owned, else a partner-bond slot (fields.hpp) —

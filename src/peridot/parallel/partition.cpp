@@ -14,6 +14,7 @@ struct Slice {
   const Discretization* disc;
   std::size_t begin, end;
   const std::vector<std::uint64_t>* weight;
+  const std::vector<std::uint32_t>* global_id = nullptr;  ///< of point begin + k; null: begin + k itself
 };
 
 int count_objects(void* data, int* ierr) {
@@ -26,7 +27,7 @@ void list_objects(void* data, int, int, ZOLTAN_ID_PTR global_ids, ZOLTAN_ID_PTR 
                   float* weights, int* ierr) {
   const Slice& s = *static_cast<Slice*>(data);
   for (std::size_t k = 0; k < s.end - s.begin; ++k) {
-    global_ids[k] = static_cast<ZOLTAN_ID_TYPE>(s.begin + k);
+    global_ids[k] = static_cast<ZOLTAN_ID_TYPE>(s.global_id ? (*s.global_id)[s.begin + k] : s.begin + k);
     local_ids[k] = static_cast<ZOLTAN_ID_TYPE>(k);
     // A point with no bond still costs its integration: weight at least 1.
     if (weight_dim == 1) weights[k] = static_cast<float>(std::max<std::uint64_t>(1, (*s.weight)[k]));
@@ -39,23 +40,17 @@ int geometry_dimension(void* data, int* ierr) {
   return static_cast<Slice*>(data)->disc->dimension;
 }
 
-void geometry(void* data, int, int, int count, ZOLTAN_ID_PTR global_ids, ZOLTAN_ID_PTR, int dim, double* out,
+void geometry(void* data, int, int, int count, ZOLTAN_ID_PTR, ZOLTAN_ID_PTR local_ids, int dim, double* out,
               int* ierr) {
   const Slice& s = *static_cast<Slice*>(data);
   for (int k = 0; k < count; ++k)
-    for (int d = 0; d < dim; ++d) out[k * dim + d] = s.disc->x(global_ids[k], d);
+    for (int d = 0; d < dim; ++d) out[k * dim + d] = s.disc->x(s.begin + local_ids[k], d);
   *ierr = ZOLTAN_OK;
 }
 
-}  // namespace
-
-std::vector<int> partition_points(const Communicator& comm, const Discretization& disc,
-                                  const std::vector<std::uint64_t>& slice_weight, PartitionMethod method) {
-  const std::size_t n = disc.num_points();
-  if (comm.serial()) return std::vector<int>(n, 0);
-  Slice slice{&disc, slice_begin(n, comm.rank(), comm.size()), slice_begin(n, comm.rank() + 1, comm.size()), &slice_weight};
-  PERIDOT_REQUIRE(slice_weight.size() == slice.end - slice.begin, "one weight per point of the slice");
-
+/// The part Zoltan gives each point of the slice (collective).
+std::vector<int> partition_slice(const Communicator& comm, Slice& slice, PartitionMethod method) {
+  PERIDOT_REQUIRE(slice.weight->size() == slice.end - slice.begin, "one weight per point of the slice");
   float version = 0;
   Zoltan_Initialize(0, nullptr, &version);
   Zoltan_Struct* zz = Zoltan_Create(comm.mpi());
@@ -82,8 +77,27 @@ std::vector<int> partition_points(const Communicator& comm, const Discretization
   Zoltan_LB_Free_Part(&import_gids, &import_lids, &import_procs, &import_parts);
   Zoltan_LB_Free_Part(&export_gids, &export_lids, &export_procs, &export_parts);
   Zoltan_Destroy(&zz);
+  return slice_owner;
+}
+
+}  // namespace
+
+std::vector<int> partition_points(const Communicator& comm, const Discretization& disc,
+                                  const std::vector<std::uint64_t>& slice_weight, PartitionMethod method) {
+  const std::size_t n = disc.num_points();
+  if (comm.serial()) return std::vector<int>(n, 0);
+  Slice slice{&disc, slice_begin(n, comm.rank(), comm.size()), slice_begin(n, comm.rank() + 1, comm.size()), &slice_weight};
+  const std::vector<int> slice_owner = partition_slice(comm, slice, method);
   std::vector<std::int32_t> owner = comm.all_gather(std::vector<std::int32_t>(slice_owner.begin(), slice_owner.end()));
   return std::vector<int>(owner.begin(), owner.end());
+}
+
+std::vector<int> partition_local_points(const Communicator& comm, const Discretization& points,
+                                        const std::vector<std::uint32_t>& global_id,
+                                        const std::vector<std::uint64_t>& weight, PartitionMethod method) {
+  if (comm.serial()) return std::vector<int>(points.num_points(), 0);
+  Slice slice{&points, 0, points.num_points(), &weight, &global_id};
+  return partition_slice(comm, slice, method);
 }
 
 }  // namespace peridot

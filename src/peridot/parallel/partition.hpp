@@ -26,4 +26,10 @@ std::vector<int> partition_points(const Communicator& comm, const Discretization
                                   const std::vector<std::uint64_t>& slice_weight,
                                   PartitionMethod method = PartitionMethod::rcb);
 
+/// Distributed generation (domain.hpp): the owner rank of each of this rank's `points` (global ids and bond
+/// counts given), every rank handing Zoltan its own points. Collective; on one rank every point is rank 0's.
+std::vector<int> partition_local_points(const Communicator& comm, const Discretization& points,
+                                        const std::vector<std::uint32_t>& global_id,
+                                        const std::vector<std::uint64_t>& weight, PartitionMethod method);
+
 }  // namespace peridot

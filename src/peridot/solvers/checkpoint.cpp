@@ -146,8 +146,8 @@ void restore_checkpoint(Simulation& sim, const CheckpointData& data, const std::
   const std::size_t owned = sim.num_owned();
   const std::size_t n = data.family_size.size();
   std::string failure;
-  if (n != sim.output_discretization().num_points())
-    failure = fmt::format("'{}' holds {} points and this problem has {}", path, n, sim.output_discretization().num_points());
+  if (n != sim.global_point_count())
+    failure = fmt::format("'{}' holds {} points and this problem has {}", path, n, sim.global_point_count());
   std::vector<std::uint64_t> bond_offset(n + 1, 0);
   for (std::size_t g = 0; g < n; ++g) bond_offset[g + 1] = bond_offset[g] + data.family_size[g];
   for (std::size_t i = 0; i < owned && failure.empty(); ++i)

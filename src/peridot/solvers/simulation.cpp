@@ -62,8 +62,6 @@ IsotropicQuadrature fit_block_quadrature(const Problem& problem, const BodySpec&
 }  // namespace
 
 Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(problem), comm_(comm) {
-  Discretization global = discretize(problem_);
-
   const bool partial = problem_.partial_volume != PartialVolumeKind::none;
   model_.partial_volume_radius = partial ? 0.5 * problem_.spacing : 0.0;
   NeighborhoodOptions neighborhood;
@@ -87,16 +85,58 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   };
   // The partner bond j → i: the inelastic models read its history.
   const bool needs_partner_bonds = model_.bond_history_arrays() > 0;
+  // Distributed, the problems whose points are made on the lattice are made piece by piece: no rank holds
+  // them all (parallel/domain.hpp, decompose_generated); other problems are discretized whole on every rank.
+  const bool generated = !comm_.serial() && generated_by_window(problem_);
   if (comm_.serial()) {
-    disc_ = std::move(global);
+    disc_ = discretize(problem_);
     node_sets_ = build_node_sets(problem_, disc_);
-    owned_ = disc_.num_points();
+    owned_ = global_points_ = disc_.num_points();
     bonds_ = build_neighborhood(disc_, neighborhood);
     if (needs_partner_bonds) build_reverse_bonds(bonds_);
     mark_no_fail(disc_, node_sets_);
     model_.no_fail = std::move(no_fail);
+  } else if (generated) {
+    LocalDomain domain = decompose_generated(comm_, problem_, neighborhood, problem_.partition);
+    if (needs_partner_bonds) bond_halo_ = build_partner_bonds(comm_, domain);
+    disc_ = std::move(domain.disc);
+    bonds_ = std::move(domain.bonds);
+    owned_ = domain.owned;
+    global_points_ = domain.global_points;
+    global_index_ = std::move(domain.global_index);
+    halo_ = std::move(domain.halo);
+    // The node sets over the owned points and the ghosts (a bond to a protected ghost never breaks); a set is
+    // empty when it is on every rank.
+    const std::vector<NodeSet> sets = build_node_sets(problem_, disc_, global_points_);
+    std::vector<Diagnostic> empty;
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+      NodeSet mine{sets[s].name, {}};
+      for (std::uint32_t i : sets[s].points)
+        if (i < owned_) mine.points.push_back(i);
+      if (comm_.sum(static_cast<std::uint64_t>(mine.points.size())) == 0) empty.push_back(empty_node_set_error(problem_.node_sets[s]));
+      node_sets_.push_back(std::move(mine));
+    }
+    if (!empty.empty()) throw InputError(empty);
+    mark_no_fail(disc_, sets);
+    model_.no_fail = std::move(no_fail);
+    // What the outputs (rank 0) and the features that still read every point (short-range contact, symmetry
+    // walls) need of the whole problem.
+    const bool everywhere = problem_.contact.has_value() ||
+                            std::any_of(problem_.rigid_walls.begin(), problem_.rigid_walls.end(),
+                                        [](const RigidWallSpec& w) { return w.contact == WallContactKind::symmetry; });
+    global_disc_ = assemble_discretization(everywhere);
+    for (const NodeSet& set : node_sets_) {
+      std::vector<std::uint32_t> global;
+      for (std::uint32_t i : set.points) global.push_back(global_index_[i]);
+      global = comm_.gather(global);
+      std::sort(global.begin(), global.end());
+      global_node_sets_.push_back({set.name, std::move(global)});
+    }
+    gathered_index_ = comm_.gather(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() +
+                                                              static_cast<std::ptrdiff_t>(owned_)));
   } else {
-    global_disc_ = std::move(global);
+    global_disc_ = discretize(problem_);
+    global_points_ = global_disc_.num_points();
     global_node_sets_ = build_node_sets(problem_, global_disc_);
     LocalDomain domain = decompose(comm_, global_disc_, neighborhood, problem_.partition);
     if (needs_partner_bonds) bond_halo_ = build_partner_bonds(comm_, domain);
@@ -195,6 +235,33 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
 }
 
 Simulation::~Simulation() = default;
+
+Discretization Simulation::assemble_discretization(bool everywhere) const {
+  Discretization all;
+  all.dimension = disc_.dimension;
+  all.block_names = disc_.block_names;
+  const auto owned = static_cast<std::ptrdiff_t>(owned_);
+  auto collect = [&](const auto& local) { return everywhere ? comm_.all_gather(local) : comm_.gather(local); };
+  const std::vector<std::uint32_t> index = collect(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() + owned));
+  const std::vector<double> x = collect(std::vector<double>(disc_.x.data(), disc_.x.data() + 3 * owned_));
+  const std::vector<double> volume = collect(std::vector<double>(disc_.volume.begin(), disc_.volume.begin() + owned));
+  const std::vector<std::int32_t> block = collect(std::vector<std::int32_t>(disc_.block.begin(), disc_.block.begin() + owned));
+  const std::vector<std::uint32_t> input = collect(std::vector<std::uint32_t>(disc_.input_id.begin(), disc_.input_id.begin() + owned));
+  if (index.empty()) return all;  // not rank 0
+  const std::size_t n = index.size();
+  all.x.resize(n);
+  all.volume.resize(n);
+  all.block.resize(n);
+  all.input_id.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t g = index[k];
+    all.x.set(g, Vec3{x[3 * k], x[3 * k + 1], x[3 * k + 2]});
+    all.volume[g] = volume[k];
+    all.block[g] = block[k];
+    all.input_id[g] = input[k];
+  }
+  return all;
+}
 
 void Simulation::apply_initial_state() {
   state_.time = 0;

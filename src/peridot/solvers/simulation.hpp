@@ -183,6 +183,8 @@ class Simulation {
   Vec3 reaction(const NodeSet& set) const;
   /// Bytes held by this rank's points and bonds (an estimate for `peridot check`).
   std::size_t memory_bytes() const;
+  /// Points of the whole problem.
+  std::size_t global_point_count() const { return global_points_; }
   /// Directed bonds of the whole problem (collective).
   std::uint64_t global_bond_count() const;
   /// This rank's communication in the steps so far (benchmarks): the halo exchanges of points and partner
@@ -209,6 +211,9 @@ class Simulation {
  private:
   /// Labels state_.fragment, once per step (collective).
   void fragments();
+  /// The whole problem's points (x, V, block, input id) in the global order, from every rank's owned points:
+  /// on rank 0, or with `everywhere` on every rank. Collective.
+  Discretization assemble_discretization(bool everywhere) const;
   /// Copies this rank's owned values of a per-point field into the global field on rank 0.
   void gather_field(const double* local, int components, std::vector<double>& global) const;
   /// Throws, on every rank, the first failing rank's InputError (none: no error anywhere). Collective.
@@ -222,14 +227,15 @@ class Simulation {
   Problem problem_;
   Communicator comm_;
   Discretization disc_;
-  std::size_t owned_ = 0;
+  std::size_t owned_ = 0, global_points_ = 0;
   SurfaceCorrectionResult surface_correction_;
   std::vector<std::uint32_t> global_index_;
   Halo halo_;
   double collective_seconds_ = 0;  ///< in agree_on_failure
   Halo bond_halo_;  ///< partner-bond slots (BondList::reverse), for models that read their partner's bond
-  /// Distributed only: the whole problem on every rank (set-up, node sets), and on rank 0 the gathered
-  /// state of the last gather_outputs.
+  /// Distributed only: the whole problem (set-up, node sets) on rank 0, and on every rank where it was
+  /// discretized whole or where a feature reads every point (Simulation()); on rank 0 the gathered state of
+  /// the last gather_outputs.
   Discretization global_disc_;
   std::vector<NodeSet> global_node_sets_;
   State global_state_;

@@ -60,12 +60,15 @@ TimeIntegrator::Schedule VelocityVerlet::schedule(const SolverSpec& solver, doub
 
 VelocityVerlet::VelocityVerlet(Simulation& sim) : sim_(sim), damping_(sim.problem().solver.parameters.number("damping")) {
   sim.model().bond_failure_after_force = sim.problem().solver.parameters.text("bond_failure") == "after_force";
-  // Every rank holds the whole problem's points: the same extent, the same limit everywhere.
-  const Discretization& all = sim.output_discretization();
+  // The whole problem's extent (exact minima and maxima over the ranks): the same limit everywhere.
+  const Discretization& mine = sim.discretization();
+  const Communicator& comm = sim.communicator();
   double extent = 0;
   for (int d = 0; d < 3; ++d) {
     double lo = INFINITY, hi = -INFINITY;
-    for (std::size_t i = 0; i < all.num_points(); ++i) lo = std::min(lo, all.x(i, d)), hi = std::max(hi, all.x(i, d));
+    for (std::size_t i = 0; i < sim.num_owned(); ++i) lo = std::min(lo, mine.x(i, d)), hi = std::max(hi, mine.x(i, d));
+    lo = comm.min(lo);
+    hi = comm.max(hi);
     if (hi >= lo) extent = std::max(extent, hi - lo);
   }
   double horizon = 0;
