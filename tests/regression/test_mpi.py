@@ -198,8 +198,9 @@ def main():
           f"unwritable output directory on 2 ranks: exit {r.returncode}, one message")
 
     r = peridot(["check", os.path.join(a.source, "tests", "regression", "decks", "mpi_mixed.yaml")], ranks=2)
-    check(r.returncode == 0 and r.stdout.count(": valid") == 1 and re.search(r"ranks +2 \(owned points", r.stdout),
-          "peridot check on 2 ranks prints one description with the decomposition\n" + r.stdout)
+    check(r.returncode == 0 and r.stdout.count(": valid") == 1 and re.search(r"ranks +2 \(owned points", r.stdout)
+          and "points made      by each rank for its own part of space" in r.stdout,
+          "peridot check on 2 ranks prints one description with the decomposition, the points made per rank\n" + r.stdout)
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0
 

@@ -222,7 +222,7 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "jitter", .default_yaml = "0", .range = {0, 0.5, false, true},
                  .description = "random shift of each point, fraction of Δx"},
                 {.key = "seed", .type = VT::integer, .default_yaml = "1", .range = non_negative,
-                 .description = "random seed of the jitter"},
+                 .description = "random seed of the jitter (a point's shift depends on the seed and its lattice site only)"},
                 {.key = "partial_volume", .type = VT::choice, .default_yaml = "none",
                  .description = "weigh bonds by the part of the neighbour's cell inside the horizon: none; extended "
                                 "(also bonds cells centred up to δ + Δx/2, converges); horizon (bonds within δ only, "

@@ -71,6 +71,19 @@ void site_range(const Problem& problem, const BodySpec& body, double reach, long
   }
 }
 
+/// Moves a lattice point by its jitter: uniform in ±jitter·Δx along each axis, drawn from a stream seeded by the
+/// deck's seed and the point's site alone (not by the order of generation), so that a rank making only part of
+/// the lattice moves each point as a serial run does.
+void jitter(const Problem& problem, std::int32_t block, bool layer, std::uint64_t site, Vec3& p) {
+  if (!(problem.jitter > 0)) return;
+  std::uint64_t state = problem.seed;
+  for (std::uint64_t word : {static_cast<std::uint64_t>(block) << 1 | (layer ? 1u : 0u), site}) {
+    state ^= word;
+    uniform01(state);  // mixes the word into the state
+  }
+  for (int d = 0; d < problem.dimension; ++d) p[d] += (2 * uniform01(state) - 1) * problem.jitter * problem.spacing;
+}
+
 // A lattice site inside several bodies belongs to the first of them (bodies share one lattice).
 bool claimed_by_earlier_body(const Problem& problem, std::int32_t block, Vec3 p) {
   for (std::int32_t b = 0; b < block; ++b) {
@@ -81,7 +94,7 @@ bool claimed_by_earlier_body(const Problem& problem, std::int32_t block, Vec3 p)
 }
 
 void fill_shape(const Problem& problem, std::int32_t block, const LatticeExtent& extent, const Window& window,
-                std::vector<RawPoint>& out, std::uint64_t& rng) {
+                std::vector<RawPoint>& out) {
   const BodySpec& body = problem.bodies[block];
   const int dim = problem.dimension;
   const double dx = problem.spacing;
@@ -95,9 +108,9 @@ void fill_shape(const Problem& problem, std::int32_t block, const LatticeExtent&
         if (!window.holds(i, j, k)) continue;
         Vec3 p{origin.x + (i + 0.5) * dx, dim >= 2 ? origin.y + (j + 0.5) * dx : 0.0, dim == 3 ? origin.z + (k + 0.5) * dx : 0.0};
         if (!body.shape->contains(p, dim) || claimed_by_earlier_body(problem, block, p)) continue;
-        if (problem.jitter > 0)
-          for (int d = 0; d < dim; ++d) p[d] += (2 * uniform01(rng) - 1) * problem.jitter * dx;
-        out.push_back({p, volume, block, 0, extent.site(i, j, k), false});
+        const std::uint64_t site = extent.site(i, j, k);
+        jitter(problem, block, false, site, p);
+        out.push_back({p, volume, block, 0, site, false});
       }
 }
 
@@ -105,7 +118,7 @@ void fill_shape(const Problem& problem, std::int32_t block, const LatticeExtent&
 /// body.volume_constraint of one of this body's own sites, with its material; their indices in `out` go to
 /// `layer`.
 void fill_layer(const Problem& problem, std::int32_t block, const LatticeExtent& extent, const Window& window,
-                std::vector<RawPoint>& out, std::vector<std::uint32_t>& layer, std::uint64_t& rng) {
+                std::vector<RawPoint>& out, std::vector<std::uint32_t>& layer) {
   const BodySpec& body = problem.bodies[block];
   const int dim = problem.dimension;
   const double dx = problem.spacing, reach = body.volume_constraint;
@@ -138,10 +151,10 @@ void fill_layer(const Problem& problem, std::int32_t block, const LatticeExtent&
           return of_this_body(site(i + o[0], j + o[1], k + o[2]));
         });
         if (!near) continue;
-        if (problem.jitter > 0)
-          for (int d = 0; d < dim; ++d) p[d] += (2 * uniform01(rng) - 1) * problem.jitter * dx;
+        const std::uint64_t site = extent.site(i, j, k);
+        jitter(problem, block, true, site, p);
         layer.push_back(static_cast<std::uint32_t>(out.size()));
-        out.push_back({p, volume, block, 0, extent.site(i, j, k), true});
+        out.push_back({p, volume, block, 0, site, true});
       }
 }
 
@@ -240,8 +253,7 @@ void read_point_file(const Problem& problem, const BodySpec& body, std::int32_t 
 }  // namespace
 
 bool generated_by_window(const Problem& problem) {
-  return problem.jitter == 0 &&
-         std::all_of(problem.bodies.begin(), problem.bodies.end(), [](const BodySpec& b) { return b.shape.has_value(); });
+  return std::all_of(problem.bodies.begin(), problem.bodies.end(), [](const BodySpec& b) { return b.shape.has_value(); });
 }
 
 LatticeExtent lattice_extent(const Problem& problem) {
@@ -271,16 +283,15 @@ double cell_side(double volume, const Problem& problem) {
 }
 
 LatticePoints discretize_window(const Problem& problem, int axis, long first, long last) {
-  PERIDOT_REQUIRE(generated_by_window(problem), "discretize_window: a body is not a shape on the lattice, or jittered");
+  PERIDOT_REQUIRE(generated_by_window(problem), "discretize_window: a body is not a shape on the lattice");
   check_size(problem);
   const LatticeExtent extent = lattice_extent(problem);
   const Window window{axis, first, last};
   std::vector<RawPoint> raw;
-  std::uint64_t rng = problem.seed;  // unused: no jitter
   for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
-    fill_shape(problem, static_cast<std::int32_t>(b), extent, window, raw, rng);
+    fill_shape(problem, static_cast<std::int32_t>(b), extent, window, raw);
     std::vector<std::uint32_t> layer;
-    if (problem.bodies[b].volume_constraint > 0) fill_layer(problem, static_cast<std::int32_t>(b), extent, window, raw, layer, rng);
+    if (problem.bodies[b].volume_constraint > 0) fill_layer(problem, static_cast<std::int32_t>(b), extent, window, raw, layer);
   }
   LatticePoints out;
   out.disc.dimension = problem.dimension;
@@ -302,7 +313,6 @@ LatticePoints discretize_window(const Problem& problem, int axis, long first, lo
 
 Discretization discretize(const Problem& problem) {
   std::vector<RawPoint> raw;
-  std::uint64_t rng = problem.seed;
   std::vector<Diagnostic> errors;
   check_size(problem);
   const LatticeExtent extent = lattice_extent(problem);
@@ -313,12 +323,12 @@ Discretization discretize(const Problem& problem) {
     const BodySpec& body = problem.bodies[b];
     const std::size_t before = raw.size();
     if (body.shape) {
-      fill_shape(problem, static_cast<std::int32_t>(b), extent, everywhere, raw, rng);
+      fill_shape(problem, static_cast<std::int32_t>(b), extent, everywhere, raw);
       if (body.volume_constraint > 0 && raw.size() > before) {
         Discretization::MeshSet& layer = mesh_sets.emplace_back();
         layer.name = body.name + "_constraint";
         layer.block = static_cast<std::int32_t>(b);
-        fill_layer(problem, static_cast<std::int32_t>(b), extent, everywhere, raw, layer.input_ids, rng);
+        fill_layer(problem, static_cast<std::int32_t>(b), extent, everywhere, raw, layer.input_ids);
         if (layer.input_ids.empty())
           errors.push_back({body.pos, "bodies." + body.name +
                                           ".volume_constraint: the layer holds no lattice site (is it thinner than the "

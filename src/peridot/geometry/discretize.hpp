@@ -22,7 +22,7 @@ Discretization discretize(const Problem& problem);
 std::vector<BlockRange> block_ranges(const Discretization& disc, std::size_t count = SIZE_MAX);
 
 // -- distributed generation (parallel/domain.hpp) ------------------------------------------------------------
-// A run whose bodies are all shapes on the lattice, without jitter, can be generated piece by piece: each rank
+// A run whose bodies are all shapes on the lattice (jittered or not) can be generated piece by piece: each rank
 // makes the sites of its slab of lattice planes only. What the whole-problem order needs of a point is then
 // derived from its site alone, so that every rank count gives the serial order and ids:
 //   generation order (the input id's order): block, then shape points before the body's volume-constraint
@@ -41,7 +41,7 @@ struct LatticeExtent {
   }
 };
 
-/// Whether discretize_window can make this problem (every body a shape, no jitter).
+/// Whether discretize_window can make this problem (every body a shape on the lattice).
 bool generated_by_window(const Problem& problem);
 LatticeExtent lattice_extent(const Problem& problem);
 

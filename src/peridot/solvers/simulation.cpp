@@ -87,7 +87,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   const bool needs_partner_bonds = model_.bond_history_arrays() > 0;
   // Distributed, the problems whose points are made on the lattice are made piece by piece: no rank holds
   // them all (parallel/domain.hpp, decompose_generated); other problems are discretized whole on every rank.
-  const bool generated = !comm_.serial() && generated_by_window(problem_);
+  const bool generated = generated_per_rank_ = !comm_.serial() && generated_by_window(problem_);
   if (comm_.serial()) {
     disc_ = discretize(problem_);
     node_sets_ = build_node_sets(problem_, disc_);

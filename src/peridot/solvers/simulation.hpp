@@ -183,6 +183,9 @@ class Simulation {
   Vec3 reaction(const NodeSet& set) const;
   /// Bytes held by this rank's points and bonds (an estimate for `peridot check`).
   std::size_t memory_bytes() const;
+  /// Distributed: whether each rank made only its own part of the points (parallel/domain.hpp,
+  /// decompose_generated), not the whole problem.
+  bool generated_per_rank() const { return generated_per_rank_; }
   /// Points of the whole problem.
   std::size_t global_point_count() const { return global_points_; }
   /// Directed bonds of the whole problem (collective).
@@ -228,6 +231,7 @@ class Simulation {
   Communicator comm_;
   Discretization disc_;
   std::size_t owned_ = 0, global_points_ = 0;
+  bool generated_per_rank_ = false;
   SurfaceCorrectionResult surface_correction_;
   std::vector<std::uint32_t> global_index_;
   Halo halo_;
