@@ -34,6 +34,9 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/energy_failure_small.yaml", "lps 2D, bonds breaking by their work (damage criterion: energy)"),
     ("tests/regression/decks/mpi_contact.yaml",
      "short-range contact with fragments and friction, a free rigid ball and a fixed rigid box"),
+    ("tests/regression/decks/mpi_generated.yaml",
+     "points made per rank: overlapping bodies, jitter, a volume-constraint layer, an id-file node set"),
+    ("tests/regression/decks/mpi_mesh_body.yaml", "a point-file body beside a lattice body: every rank reads the whole problem"),
 ]
 RANKS = [1, 2, 3, 4]
 

@@ -19,16 +19,18 @@ namespace {
 /// in increasing global index).
 template <class GlobalOf, class OwnerOf>
 LocalDomain assemble(const Communicator& comm, const Discretization& all, const std::vector<std::uint32_t>& owned,
-                     const BondList& families, GlobalOf&& global_of, OwnerOf&& owner_of) {
+                     BondList families, GlobalOf&& global_of, OwnerOf&& owner_of) {
   LocalDomain d;
   // Ghosts: partners owned elsewhere, grouped by owner rank, increasing global index within a group.
+  std::vector<std::uint8_t> partner(all.num_points(), 0);
+  for (std::uint32_t j : families.neighbors) partner[j] = 1;
   std::vector<std::uint32_t> ghosts;
-  for (std::uint32_t j : families.neighbors)
-    if (owner_of(j) != comm.rank()) ghosts.push_back(j);
+  for (std::size_t t = 0; t < partner.size(); ++t)
+    if (partner[t] && owner_of(static_cast<std::uint32_t>(t)) != comm.rank()) ghosts.push_back(static_cast<std::uint32_t>(t));
+  partner = {};
   std::sort(ghosts.begin(), ghosts.end(), [&](std::uint32_t a, std::uint32_t b) {
     return owner_of(a) != owner_of(b) ? owner_of(a) < owner_of(b) : global_of(a) < global_of(b);
   });
-  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
   std::vector<int> ghost_owner;
   for (std::uint32_t g : ghosts) ghost_owner.push_back(owner_of(g));
 
@@ -55,11 +57,11 @@ LocalDomain assemble(const Communicator& comm, const Discretization& all, const 
     d.disc.input_id[l] = all.input_id.empty() ? t : all.input_id[t];
   }
 
-  d.bonds.offsets.assign(local + 1, families.offsets.back());
-  std::copy(families.offsets.begin(), families.offsets.end(), d.bonds.offsets.begin());
-  d.bonds.neighbors.resize(families.neighbors.size());
-  for (std::size_t b = 0; b < families.neighbors.size(); ++b) d.bonds.neighbors[b] = local_of[families.neighbors[b]];
-  d.bonds.broken.assign(families.neighbors.size(), 0);
+  // The families become the bonds, renumbered in place (the bonds are most of a rank's memory: no copy).
+  d.bonds = std::move(families);
+  d.bonds.offsets.resize(local + 1, d.bonds.offsets.back());  // ghosts: empty families
+  for (std::uint32_t& j : d.bonds.neighbors) j = local_of[j];
+  d.bonds.broken.assign(d.bonds.neighbors.size(), 0);
   // Each owner is asked for the points this rank holds as ghosts: one global index per ghost.
   std::vector<int> count(static_cast<std::size_t>(comm.size()), 0);
   for (int r : ghost_owner) ++count[r];
@@ -85,8 +87,7 @@ LocalDomain decompose(const Communicator& comm, const Discretization& global, co
   std::vector<std::uint32_t> owned;
   for (std::size_t i = 0; i < n; ++i)
     if (owner[i] == comm.rank()) owned.push_back(static_cast<std::uint32_t>(i));
-  const BondList families = build_neighborhood(global, options, owned);
-  LocalDomain d = assemble(comm, global, owned, families, [](std::uint32_t t) { return t; },
+  LocalDomain d = assemble(comm, global, owned, build_neighborhood(global, options, owned), [](std::uint32_t t) { return t; },
                            [&](std::uint32_t t) { return owner[t]; });
   d.global_points = n;
   return d;
@@ -290,8 +291,7 @@ LocalDomain decompose_generated(const Communicator& comm, const Problem& problem
     all_owner[t] = sorted[t] < owned_count ? comm.rank() : candidate_owner[sorted[t] - owned_count];
     if (sorted[t] < owned_count) owned_in_all.push_back(static_cast<std::uint32_t>(t));
   }
-  const BondList families = build_neighborhood(all, options, owned_in_all);
-  LocalDomain d = assemble(comm, all, owned_in_all, families, [&](std::uint32_t t) { return all_global[t]; },
+  LocalDomain d = assemble(comm, all, owned_in_all, build_neighborhood(all, options, owned_in_all), [&](std::uint32_t t) { return all_global[t]; },
                            [&](std::uint32_t t) { return all_owner[t]; });
   d.global_points = total;
   // The volume-constraint layers, by input id, over the rank's points.

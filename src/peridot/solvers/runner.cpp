@@ -1,5 +1,6 @@
 #include "peridot/solvers/runner.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <csignal>
@@ -15,6 +16,7 @@
 #include <fmt/ranges.h>
 
 #include "peridot/deck/deck.hpp"
+#include "peridot/core/resident_memory.hpp"
 #include "peridot/core/simd.hpp"
 #include "peridot/materials/models.hpp"
 #include "peridot/output/csv_writer.hpp"
@@ -407,6 +409,7 @@ void Run::Impl::open_outputs() {
   for (const Diagnostic& w : problem.warnings) log.line(w.str());
   std::istringstream setup(describe_setup(sim));
   for (std::string line; std::getline(setup, line);) log.line(line);
+  log.line(fmt::format("set-up           points, bonds and partition in {:.2f} s (the slowest rank)", comm.max(sim.setup_seconds())));
   if (sim.integrator().bounded_by_stable_time_step() && sim.time_step() > sim.stable_time_step()) {
     const std::string warning = fmt::format("warning: time step {:.6g} s is above the stable time step {:.6g} s",
                                             sim.time_step(), sim.stable_time_step());
@@ -593,6 +596,20 @@ void Run::finish() {
   if (const ShortRangeContact* contact = sim.short_range())
     run.log.line(fmt::format("contact: {} pair-list builds in {:.2f} s, pair forces {:.2f} s; {} pairs listed at the end (rank 0)",
                              contact->builds(), contact->build_seconds(), contact->compute_seconds(), contact->pairs()));
+  // Collective: every rank's peak, in the log of rank 0.
+  const std::vector<double> peak = run.comm.gather(std::vector<double>{static_cast<double>(peak_resident_bytes())});
+  if (run.comm.is_root()) {
+    const double mib = 1 << 20;
+    if (peak.size() == 1) {
+      run.log.line(fmt::format("peak resident memory {:.1f} MiB", peak[0] / mib));
+    } else {
+      std::string each;
+      double sum = 0;
+      for (double p : peak) each += fmt::format("{}{:.1f}", each.empty() ? "" : ", ", p / mib), sum += p;
+      run.log.line(fmt::format("peak resident memory {:.1f} MiB on the largest rank, {:.1f} MiB on all (per rank: {})",
+                               *std::max_element(peak.begin(), peak.end()) / mib, sum / mib, each));
+    }
+  }
 }
 
 void Run::stopped(int signal) {

@@ -1,6 +1,7 @@
 #include "peridot/solvers/simulation.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -62,6 +63,7 @@ IsotropicQuadrature fit_block_quadrature(const Problem& problem, const BodySpec&
 }  // namespace
 
 Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(problem), comm_(comm) {
+  const auto setup_start = std::chrono::steady_clock::now();
   const bool partial = problem_.partial_volume != PartialVolumeKind::none;
   model_.partial_volume_radius = partial ? 0.5 * problem_.spacing : 0.0;
   NeighborhoodOptions neighborhood;
@@ -152,6 +154,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     gathered_index_ = comm_.gather(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() +
                                                               static_cast<std::ptrdiff_t>(owned_)));
   }
+  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   model_.disc = &disc_;
   model_.bonds = &bonds_;
   model_.ranges = block_ranges(disc_, owned_);

@@ -186,6 +186,8 @@ class Simulation {
   /// Distributed: whether each rank made only its own part of the points (parallel/domain.hpp,
   /// decompose_generated), not the whole problem.
   bool generated_per_rank() const { return generated_per_rank_; }
+  /// Seconds this rank took to make its points, their bonds and the partition (Simulation()).
+  double setup_seconds() const { return setup_seconds_; }
   /// Points of the whole problem.
   std::size_t global_point_count() const { return global_points_; }
   /// Directed bonds of the whole problem (collective).
@@ -232,6 +234,7 @@ class Simulation {
   Discretization disc_;
   std::size_t owned_ = 0, global_points_ = 0;
   bool generated_per_rank_ = false;
+  double setup_seconds_ = 0;
   SurfaceCorrectionResult surface_correction_;
   std::vector<std::uint32_t> global_index_;
   Halo halo_;
