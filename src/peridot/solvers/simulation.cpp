@@ -629,6 +629,16 @@ Totals Simulation::totals() {
   return output_totals();
 }
 
+double Simulation::energy_estimate() {
+  compute_strain_energy_density(model_, state_.u, state_.dilatation, energy_density_, &state_.history);
+  if (has_correspondence()) correspondence_->strain_energy_density(energy_density_);
+  const double* v = state_.v.data();
+  return reproducible_sum(comm_, owned_, [&](std::size_t i) {
+    const double kinetic = 0.5 * density_of(i) * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
+    return (kinetic + energy_density_[i]) * disc_.volume[i];
+  });
+}
+
 Totals Simulation::output_totals() const {
   Totals totals;
   const Discretization& disc = output_discretization();

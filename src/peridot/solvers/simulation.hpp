@@ -178,6 +178,10 @@ class Simulation {
   Totals output_totals() const;
   /// gather_outputs(false, true), then output_totals() (meaningful on rank 0). Collective.
   Totals totals();
+  /// Kinetic plus stored energy (J) of the whole problem, on every rank, without gathering anything: the
+  /// fixed-point sum of communicator.hpp (the same bits for any rank count, within 4e-19 N² of the largest
+  /// term): for decisions, such as the blow-up watch's threshold, not for reported totals. Collective.
+  double energy_estimate();
   /// Reaction force on a node set of output_node_sets(): −Σ f_i V_i over its points (N), from the output
   /// state (serial: the current forces).
   Vec3 reaction(const NodeSet& set) const;
