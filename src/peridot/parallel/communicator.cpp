@@ -1,5 +1,6 @@
 #include "peridot/parallel/communicator.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 
 namespace peridot {
@@ -101,6 +102,24 @@ std::vector<int> Communicator::offsets(const std::vector<int>& count) {
   std::vector<int> displ(count.size(), 0);
   for (std::size_t r = 1; r < count.size(); ++r) displ[r] = displ[r - 1] + count[r - 1];
   return displ;
+}
+
+void Communicator::sum(std::vector<ExactSum>& sums) const {
+  if (serial()) return;
+  constexpr std::size_t width = ExactSum::digits + 1;  // the digits, then a count of non-finite terms' ranks
+  std::vector<std::int64_t> digits;
+  for (const ExactSum& s : sums) {
+    const ExactSum::Digits d = s.canonical();
+    digits.insert(digits.end(), d.begin(), d.end());
+    digits.push_back(s.non_finite() ? 1 : 0);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, digits.data(), static_cast<int>(digits.size()), MPI_INT64_T, MPI_SUM, comm_);
+  for (std::size_t k = 0; k < sums.size(); ++k) {
+    ExactSum::Digits d;
+    const auto first = digits.begin() + static_cast<std::ptrdiff_t>(k * width);
+    std::copy(first, first + ExactSum::digits, d.begin());
+    sums[k].load(d, first[ExactSum::digits] > 0);
+  }
 }
 
 void Communicator::barrier() const {

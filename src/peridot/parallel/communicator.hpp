@@ -13,6 +13,8 @@
 
 #include <mpi.h>
 
+#include "peridot/core/exact_sum.hpp"
+
 namespace peridot {
 
 class Communicator {
@@ -33,6 +35,8 @@ class Communicator {
   std::uint64_t sum(std::uint64_t x) const;
   std::int64_t sum(std::int64_t x) const;
   bool any(bool x) const;
+  /// Every rank's exact sums added together, in place: the same bits for any rank count (core/exact_sum.hpp).
+  void sum(std::vector<ExactSum>& sums) const;
   /// The lowest rank for which x is true, or −1 when none.
   int first_rank_with(bool x) const;
   /// Rank `from`'s text, on every rank.
