@@ -305,7 +305,7 @@ PYBIND11_MODULE(peridot, m) {
       .def("reaction", [](PyRun& r, const std::string& name) {
              for (const peridot::NodeSet& set : r.sim().node_sets())
                if (set.name == name) {
-                 const peridot::Vec3 f = r.sim().reaction(set);
+                 const peridot::Vec3 f = r.sim().reaction(set.name);
                  return py::make_tuple(f.x, f.y, f.z);
                }
              throw py::key_error(fmt::format("no node set '{}'", name));

@@ -85,7 +85,7 @@ TEST(Tractions, FictitiousLayersCarryTheLoadAndStretchThePlateBySigmaOverE) {
   while (sim.state().step < sim.total_steps()) sim.step();
   const Discretization& disc = sim.discretization();
   for (const NodeSet& set : sim.node_sets())
-    if (set.name == "held") EXPECT_NEAR(sim.reaction(set).x, -resultant, 1e-4 * resultant);
+    if (set.name == "held") EXPECT_NEAR(sim.reaction(set.name).x, -resultant, 1e-4 * resultant);
   // The least-squares slope of u_x against x over the points with 13 mm < x < 27 mm.
   double n = 0, sx = 0, su = 0, sxx = 0, sxu = 0;
   for (std::size_t i = 0; i < disc.num_points(); ++i) {

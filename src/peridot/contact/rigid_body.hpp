@@ -88,6 +88,10 @@ class RigidBodies {
   /// Force on body k (N), −Σ b V of its contacts with every point of `disc` at displacement u, summed in
   /// point order (for the history, from the gathered state when distributed).
   Vec3 force_on(std::size_t k, const Discretization& disc, const VectorField& u) const;
+  /// The force of point i on body k (N), −b V of their contact (zero without one).
+  Vec3 force_from_point(std::size_t k, const Discretization& disc, const VectorField& u, std::size_t i) const {
+    return -disc.volume[i] * force_density(bodies_[k], disc, u, i);
+  }
   /// Energy stored in the penalties, ½ κ h² V, of point i (J).
   double point_energy(const Discretization& disc, const VectorField& u, std::size_t i) const;
 

@@ -16,6 +16,7 @@
 #include <fmt/ranges.h>
 
 #include "peridot/deck/deck.hpp"
+#include "peridot/core/exact_sum.hpp"
 #include "peridot/core/resident_memory.hpp"
 #include "peridot/core/simd.hpp"
 #include "peridot/materials/models.hpp"
@@ -192,9 +193,11 @@ class RunLog {
 
 class History {
  public:
-  /// Rows go to the CSV file at `path`, and are kept in memory (rows()); an empty path: in memory only.
-  History(const fs::path& path, Simulation& sim)
-      : sim_(sim), contact_energy_(!sim.problem().rigid_bodies.empty() || sim.problem().contact) {
+  /// Every rank computes each row (row(): collective, nothing gathered); rank 0 keeps the rows in memory
+  /// (rows()) and, once open()ed, writes them to a CSV file. Collective.
+  explicit History(Simulation& sim)
+      : sim_(sim), keep_(sim.communicator().is_root()),
+        contact_energy_(!sim.problem().rigid_bodies.empty() || sim.problem().contact) {
     const Problem& problem = sim.problem();
     std::vector<std::string> columns = {"time", "step", "kinetic_energy", "strain_energy", "external_work",
                                         "momentum_x", "momentum_y", "momentum_z", "max_damage", "dissipated_energy",
@@ -216,17 +219,17 @@ class History {
         columns.push_back("body_" + body.name + what);
     }
     for (const std::string& name : problem.output.reaction_sets) {
-      for (const NodeSet& set : sim.output_node_sets())
-        if (set.name == name) reaction_sets_.push_back(&set);
+      reaction_sets_.push_back(name);
       for (const char* axis : {"_x", "_y", "_z"}) columns.push_back("reaction_" + name + axis);
     }
     for (const ProbeSpec& probe : problem.output.probes) {
-      probes_.push_back({nearest_point(sim.output_discretization(), probe.point), probe.field});
+      probes_.push_back({nearest_point(probe.point), probe.field});
       columns.push_back(probe.name);
     }
-    if (!path.empty()) writer_ = std::make_unique<CsvWriter>(path.string(), columns);
     rows_.columns = std::move(columns);
   }
+  /// Rank 0: the rows go to the CSV file at `path` too.
+  void open(const fs::path& path) { writer_ = std::make_unique<CsvWriter>(path.string(), rows_.columns); }
   void close() {
     if (writer_) writer_->close();
   }
@@ -234,11 +237,10 @@ class History {
   std::int64_t copy_rows(const std::string& earlier, std::int64_t last_step, std::int64_t every) {
     return writer_->copy_rows(earlier, last_step, every);
   }
-  /// One row from the gathered outputs (Simulation::gather_outputs with totals; rank 0). Returns the name of
-  /// its first non-finite column ("" when every value is finite); the row is written either way.
-  std::string write() {
+  /// The row of this instant, on every rank (after Simulation::gather_outputs with totals). Collective.
+  std::vector<double> row() const {
     const Totals t = sim_.output_totals();
-    const State& s = sim_.output_state();
+    const State& s = sim_.state();
     std::vector<double> row = {s.time, static_cast<double>(s.step), t.kinetic_energy, t.strain_energy,
                                t.external_work, t.momentum.x, t.momentum.y, t.momentum.z, t.max_damage,
                                t.dissipated_energy, static_cast<double>(t.fragments)};
@@ -256,11 +258,17 @@ class History {
       }
       row.insert(row.end(), {force.x, force.y, force.z});
     }
-    for (const NodeSet* set : reaction_sets_) {
-      Vec3 r = sim_.reaction(*set);
+    for (const std::string& set : reaction_sets_) {
+      Vec3 r = sim_.reaction(set);
       row.insert(row.end(), {r.x, r.y, r.z});
     }
-    for (const auto& [point, field] : probes_) row.push_back(point_field(s, field, point));
+    for (const auto& [point, field] : probes_) row.push_back(probe(point, field));
+    return row;
+  }
+  /// Rank 0: keeps the row and writes it (once open). Returns the name of its first non-finite column (""
+  /// when every value is finite); the row is written either way.
+  std::string write(const std::vector<double>& row) {
+    if (!keep_) return {};
     if (writer_) writer_->write_row(row);
     rows_.values.insert(rows_.values.end(), row.begin(), row.end());
     for (std::size_t k = 0; k < row.size(); ++k)
@@ -269,20 +277,43 @@ class History {
   }
 
  private:
-  static std::size_t nearest_point(const Discretization& disc, Vec3 p) {
-    std::size_t best = 0;
+  /// The global index of the point nearest p in the reference configuration (in 2D, in the plane); of equally
+  /// near points the first in the global order, as a serial search finds. Collective.
+  std::size_t nearest_point(Vec3 p) const {
+    const Discretization& disc = sim_.discretization();
+    const Communicator& comm = sim_.communicator();
     double best_distance = INFINITY;
-    for (std::size_t i = 0; i < disc.num_points(); ++i) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < sim_.num_owned(); ++i) {
       Vec3 d = disc.x.get(i) - p;
       if (disc.dimension == 2) d.z = 0;
-      if (dot(d, d) < best_distance) best_distance = dot(d, d), best = i;
+      if (dot(d, d) < best_distance) best_distance = dot(d, d), best = global_of(i);
     }
-    return best;
+    const double nearest = comm.min(best_distance);
+    // Global indices are below 2^32: exact as doubles.
+    return static_cast<std::size_t>(comm.min(best_distance == nearest ? static_cast<double>(best) : INFINITY));
+  }
+  std::size_t global_of(std::size_t i) const { return sim_.communicator().serial() ? i : sim_.global_index()[i]; }
+  /// The field's value at the point of global index `point`, from the rank that owns it. Collective.
+  double probe(std::size_t point, const std::string& field) const {
+    std::vector<ExactSum> value(1);
+    const std::vector<std::uint32_t>& index = sim_.global_index();
+    if (sim_.communicator().serial()) {
+      value[0].add(point_field(sim_.state(), field, point));
+    } else {
+      const auto last = index.begin() + static_cast<std::ptrdiff_t>(sim_.num_owned());
+      const auto found = std::lower_bound(index.begin(), last, static_cast<std::uint32_t>(point));
+      if (found != last && *found == point)
+        value[0].add(point_field(sim_.state(), field, static_cast<std::size_t>(found - index.begin())));
+    }
+    sim_.communicator().sum(value);  // one term in all: the owner's value (a non-finite one reads as NaN)
+    return value[0].value();
   }
   Simulation& sim_;
+  bool keep_;  ///< rank 0 keeps and writes the rows
   /// Decks with rigid bodies or short-range contact have a contact_energy column (walls alone keep the old columns).
   bool contact_energy_ = false;
-  std::vector<const NodeSet*> reaction_sets_;
+  std::vector<std::string> reaction_sets_;
   std::vector<std::pair<std::size_t, std::string>> probes_;
   std::unique_ptr<CsvWriter> writer_;  // null: in memory only
   HistoryRows rows_;
@@ -430,9 +461,9 @@ void Run::Impl::open_outputs() {
     }
   });
   // Without files the history is still kept in memory (rank 0) for Run::history.
-  if (output.history_every > 0 && comm.is_root() && !options.write_files) history = std::make_unique<History>(fs::path(), sim);
+  if (output.history_every > 0) history = std::make_unique<History>(sim);
   on_root([&] {
-    if (output.history_every > 0) history = std::make_unique<History>(results.partial(output.history_file), sim);
+    if (output.history_every > 0) history->open(results.partial(output.history_file));
   });
   if (restart) {  // the earlier frames and rows up to the checkpoint, those on this run's schedule
     const std::int64_t step = sim.state().step;
@@ -478,10 +509,11 @@ void Run::Impl::write_outputs(bool force) {
   if (frame) frame_step = step;
   if (row) row_step = step;
   std::string non_finite;  // a total that overflowed while every point's values stayed finite
-  if (row && history && !options.write_files) non_finite = history->write();
+  const std::vector<double> values = row && history ? history->row() : std::vector<double>{};  // collective
+  if (row && history && !options.write_files) non_finite = history->write(values);
   on_root([&] {
     if (frame) exodus->write_frame(sim.state().time, sim.output_state());
-    if (row) non_finite = history->write();
+    if (row) non_finite = history->write(values);
   });
   if (!row) return;
   const int failing = comm.first_rank_with(!non_finite.empty());

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "peridot/core/exact_sum.hpp"
 #include "peridot/damage/fragments.hpp"
 #include "peridot/parallel/domain.hpp"
 #include "peridot/state/point_fields.hpp"
@@ -339,12 +340,11 @@ void Simulation::compute_contact() {
     for (std::size_t k = 0; k < bodies_->size(); ++k) {
       if ((*bodies_)[k].motion != RigidMotionKind::free) continue;
       const std::vector<BodyContact>& contacts = bodies_->contacts(k);
-      Vec3 force;
-      for (int d = 0; d < 3; ++d)
-        force[d] = -reproducible_sum(comm_, contacts.size(), [&](std::size_t c) {
-          return contacts[c].force_density[d] * disc_.volume[contacts[c].point];
-        });
-      bodies_->set_force(k, force);
+      std::vector<ExactSum> force(3);
+      for (const BodyContact& c : contacts)
+        for (int d = 0; d < 3; ++d) force[d].add(-c.force_density[d] * disc_.volume[c.point]);
+      comm_.sum(force);
+      bodies_->set_force(k, Vec3{force[0].value(), force[1].value(), force[2].value()});
     }
   }
   if (!short_range_) return;
@@ -538,15 +538,11 @@ void Simulation::gather_outputs(bool fields, bool totals) {
       }
     }
     symmetry_force_density_.resize(problem_.rigid_walls.size());
-    std::vector<double> local;
-    for (std::size_t w = 0; w < problem_.rigid_walls.size(); ++w) {
-      if (problem_.rigid_walls[w].contact != WallContactKind::symmetry || !has_correspondence()) continue;
-      correspondence_->symmetry_wall_force_density(w, local);
-      if (comm_.serial()) symmetry_force_density_[w].swap(local);
-      else gather_field(local.data(), 3, symmetry_force_density_[w]);
-    }
+    for (std::size_t w = 0; w < problem_.rigid_walls.size(); ++w)
+      if (problem_.rigid_walls[w].contact == WallContactKind::symmetry && has_correspondence())
+        correspondence_->symmetry_wall_force_density(w, symmetry_force_density_[w]);
   }
-  if (comm_.serial()) return;
+  if (!fields || comm_.serial()) return;  // the totals are summed where the points are (output_totals)
   State& g = global_state_;
   g.time = state_.time;
   g.step = state_.step;
@@ -564,13 +560,7 @@ void Simulation::gather_outputs(bool fields, bool totals) {
     if (local.vector) vector_field(*local.vector, *global.vector);
     else if (local.scalar) gather_field(local.scalar->data(), 1, *global.scalar);
   }
-  gather_field(work_.data(), 1, global_work_);
-  if (totals) gather_field(energy_density_.data(), 1, global_energy_density_);
-  if (totals && has_contact()) gather_field(contact_energy_.data(), 1, global_contact_energy_);
-  if (totals && short_range_) gather_field(contact_force_.data(), 3, global_contact_force_);
-  if (has_correspondence()) gather_field(correspondence_->point_hourglass_work().data(), 1, global_hourglass_work_);
-  if (fields)
-    for (auto& [name, values] : state_.point_outputs) gather_field(values.data(), 1, g.point_outputs[name]);
+  for (auto& [name, values] : state_.point_outputs) gather_field(values.data(), 1, g.point_outputs[name]);
 }
 
 void Simulation::gather_field(const double* local, int components, std::vector<double>& global) const {
@@ -640,58 +630,84 @@ double Simulation::energy_estimate() {
 }
 
 Totals Simulation::output_totals() const {
+  // Every sum exact (core/exact_sum.hpp) over the owned points, then added over the ranks: each total is the
+  // correctly rounded sum of its terms, the same bits for any thread and rank count, and nothing is gathered.
   Totals totals;
-  const Discretization& disc = output_discretization();
-  const State& s = output_state();
-  const std::vector<double>& W = comm_.serial() ? energy_density_ : global_energy_density_;
-  const std::vector<double>& work = comm_.serial() ? work_ : global_work_;
-  const std::size_t n = disc.num_points();
-  if (!comm_.is_root()) return totals;
-  auto density = [&](std::size_t i) { return model_.params[disc.block[i]].density; };
-  const double* v = s.v.data();
-  totals.kinetic_energy = deterministic_sum(n, [&](std::size_t i) {
-    return 0.5 * density(i) * disc.volume[i] * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
-  });
-  if (has_correspondence()) {
-    const std::vector<double>& hourglass = comm_.serial() ? correspondence_->point_hourglass_work() : global_hourglass_work_;
-    totals.hourglass_work = deterministic_sum(n, [&](std::size_t i) { return hourglass[i]; });
+  const std::size_t n = owned_, bodies = bodies_->size(), blocks = problem_.bodies.size();
+  const bool contact_force = short_range_ != nullptr, hourglass = has_correspondence(), contact = has_contact();
+  enum : std::size_t { kinetic, strain, dissipated, hourglass_work, external, contact_energy, momentum, fixed = momentum + 3 };
+  const std::size_t body_force = fixed, rigid_force = body_force + (contact_force ? 3 * blocks : 0);
+  const std::size_t count = rigid_force + 3 * bodies;
+  const double* v = state_.v.data();
+  const double* dissipation = state_.history.dissipation.data();
+  const double* c = contact_force_.data();
+  std::vector<ExactSum> sums(count);
+  double max_damage = 0;
+  std::uint64_t fragments = 0;
+#pragma omp parallel
+  {
+    std::vector<ExactSum> mine(count);
+    double most = 0;
+    std::uint64_t named = 0;
+#pragma omp for schedule(static) nowait
+    for (std::size_t i = 0; i < n; ++i) {
+      const double V = disc_.volume[i], m = density_of(i) * V;
+      mine[kinetic].add(0.5 * m * (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]));
+      mine[strain].add(energy_density_[i] * V);
+      if (dissipation) mine[dissipated].add(dissipation[i] * V);
+      if (hourglass) mine[hourglass_work].add(correspondence_->point_hourglass_work()[i]);
+      mine[external].add(work_[i]);
+      if (contact) mine[contact_energy].add(contact_energy_[i]);
+      for (int d = 0; d < 3; ++d) mine[momentum + static_cast<std::size_t>(d)].add(m * v[3 * i + d]);
+      if (contact_force)
+        for (int d = 0; d < 3; ++d)
+          mine[body_force + 3 * static_cast<std::size_t>(disc_.block[i]) + static_cast<std::size_t>(d)].add(c[3 * i + d] * V);
+      for (std::size_t w = 0; w < bodies; ++w) {
+        const Vec3 f = bodies_->force_from_point(w, disc_, state_.u, i);
+        for (int d = 0; d < 3; ++d) mine[rigid_force + 3 * w + static_cast<std::size_t>(d)].add(f[d]);
+        if (w < symmetry_force_density_.size() && !symmetry_force_density_[w].empty())  // the mirror bonds' part
+          for (int d = 0; d < 3; ++d) mine[rigid_force + 3 * w + static_cast<std::size_t>(d)].add(-symmetry_force_density_[w][3 * i + d] * V);
+      }
+      most = std::max(most, state_.damage[i]);
+      // A fragment is named by the smallest input id of its points: count the points that name their own.
+      if (state_.fragment[i] == static_cast<double>(disc_.id_of(i))) ++named;
+    }
+#pragma omp critical
+    {
+      for (std::size_t k = 0; k < count; ++k) sums[k].add(mine[k]);  // exact: the order does not matter
+      max_damage = std::max(max_damage, most);
+      fragments += named;
+    }
   }
-  totals.strain_energy = deterministic_sum(n, [&](std::size_t i) { return W[i] * disc.volume[i]; });
-  const double* dissipation = s.history.dissipation.data();
-  totals.dissipated_energy = deterministic_sum(n, [&](std::size_t i) { return dissipation[i] * disc.volume[i]; });
-  for (int d = 0; d < 3; ++d)
-    totals.momentum[d] = deterministic_sum(n, [&](std::size_t i) { return density(i) * disc.volume[i] * v[3 * i + d]; });
-  for (std::size_t i = 0; i < n; ++i) totals.max_damage = std::max(totals.max_damage, s.damage[i]);
+  comm_.sum(sums);
+  totals.kinetic_energy = sums[kinetic].value();
+  totals.strain_energy = sums[strain].value();
+  totals.dissipated_energy = sums[dissipated].value();
+  totals.hourglass_work = sums[hourglass_work].value();
+  totals.external_work = sums[external].value();
+  totals.contact_energy = sums[contact_energy].value();
+  for (int d = 0; d < 3; ++d) totals.momentum[d] = sums[momentum + static_cast<std::size_t>(d)].value();
+  if (contact_force)
+    for (std::size_t b = 0; b < blocks; ++b)
+      totals.body_contact_force.push_back({sums[body_force + 3 * b].value(), sums[body_force + 3 * b + 1].value(),
+                                           sums[body_force + 3 * b + 2].value()});
+  for (std::size_t w = 0; w < bodies; ++w)
+    totals.rigid_force.push_back({sums[rigid_force + 3 * w].value(), sums[rigid_force + 3 * w + 1].value(),
+                                  sums[rigid_force + 3 * w + 2].value()});
+  totals.max_damage = comm_.max(max_damage);
+  totals.fragments = comm_.sum(fragments);
   if (all_bonds_ > 0) totals.broken_fraction = static_cast<double>(broken_bonds_) / static_cast<double>(all_bonds_);
-  // A fragment is named by the smallest input id of its points: count the points that name their own.
-  for (std::size_t i = 0; i < n; ++i)
-    if (s.fragment[i] == static_cast<double>(disc.id_of(i))) ++totals.fragments;
-  totals.external_work = deterministic_sum(n, [&](std::size_t i) { return work[i]; });
-  if (has_contact()) {
-    const std::vector<double>& energy = comm_.serial() ? contact_energy_ : global_contact_energy_;
-    totals.contact_energy = deterministic_sum(n, [&](std::size_t i) { return energy[i]; });
-  }
-  if (short_range_) {
-    const double* c = comm_.serial() ? contact_force_.data() : global_contact_force_.data();
-    for (std::size_t block = 0; block < problem_.bodies.size(); ++block) {
-      Vec3 force;
-      for (int d = 0; d < 3; ++d)
-        force[d] = deterministic_sum(n, [&](std::size_t i) {
-          return static_cast<std::size_t>(disc.block[i]) == block ? c[3 * i + static_cast<std::size_t>(d)] * disc.volume[i] : 0.0;
-        });
-      totals.body_contact_force.push_back(force);
-    }
-  }
-  for (std::size_t w = 0; w < bodies_->size(); ++w) {
-    Vec3 force = bodies_->force_on(w, disc, s.u);
-    if (w < symmetry_force_density_.size() && !symmetry_force_density_[w].empty()) {  // the mirror bonds' part (contact: symmetry)
-      const std::vector<double>& f = symmetry_force_density_[w];
-      for (int d = 0; d < 3; ++d)
-        force[d] -= deterministic_sum(n, [&](std::size_t i) { return f[3 * i + d] * disc.volume[i]; });
-    }
-    totals.rigid_force.push_back(force);
-  }
   return totals;
+}
+
+Vec3 Simulation::reaction(const std::string& set_name) const {
+  std::vector<ExactSum> sums(3);
+  for (const NodeSet& set : node_sets_)
+    if (set.name == set_name)
+      for (std::uint32_t i : set.points)  // owned points only
+        for (int d = 0; d < 3; ++d) sums[d].add(-state_.force(i, d) * disc_.volume[i]);
+  comm_.sum(sums);
+  return {sums[0].value(), sums[1].value(), sums[2].value()};
 }
 
 void Simulation::fragments() {
@@ -708,15 +724,6 @@ void Simulation::fragments() {
   fragments_step_ = step;
 }
 
-Vec3 Simulation::reaction(const NodeSet& set) const {
-  Vec3 r;
-  const State& s = output_state();
-  const Discretization& disc = output_discretization();
-  if (s.force.size() != disc.num_points()) return r;  // distributed, not rank 0
-  for (std::uint32_t i : set.points)
-    for (int d = 0; d < 3; ++d) r[d] -= s.force(i, d) * disc.volume[i];
-  return r;
-}
 
 std::uint64_t Simulation::global_bond_count() const { return comm_.sum(bonds_.num_bonds()); }
 

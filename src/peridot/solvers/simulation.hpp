@@ -168,23 +168,27 @@ class Simulation {
 
   /// Computes what the outputs read, which the step keeps only as far as it needs (damage, fragment labels,
   /// and with `fields` the dilatation and correspondence fields of an Exodus frame, with `totals` the
-  /// per-point terms of the totals) and, distributed, gathers them to rank 0. Collective.
+  /// per-point terms of the totals) and, distributed with `fields`, gathers the frame's fields to rank 0.
+  /// Collective.
   void gather_outputs(bool fields, bool totals);
-  /// After gather_outputs, on rank 0 (any rank when serial): the whole problem's points, node sets and
-  /// state in the global point order, and its totals (totals requires gather_outputs(…, true)).
+  /// After gather_outputs(true, …), on rank 0 (any rank when serial): the whole problem's points, node sets
+  /// and state in the global point order (an Exodus frame's content).
   const Discretization& output_discretization() const { return comm_.serial() ? disc_ : global_disc_; }
   const std::vector<NodeSet>& output_node_sets() const { return comm_.serial() ? node_sets_ : global_node_sets_; }
   const State& output_state() const { return comm_.serial() ? state_ : global_state_; }
+  /// The totals, after gather_outputs(…, true), on every rank: each sum exact over the owned points and the
+  /// ranks (core/exact_sum.hpp), so the correctly rounded total, the same bits for any thread and rank count,
+  /// with nothing gathered. Collective.
   Totals output_totals() const;
-  /// gather_outputs(false, true), then output_totals() (meaningful on rank 0). Collective.
+  /// gather_outputs(false, true), then output_totals(). Collective.
   Totals totals();
   /// Kinetic plus stored energy (J) of the whole problem, on every rank, without gathering anything: the
   /// fixed-point sum of communicator.hpp (the same bits for any rank count, within 4e-19 N² of the largest
   /// term): for decisions, such as the blow-up watch's threshold, not for reported totals. Collective.
   double energy_estimate();
-  /// Reaction force on a node set of output_node_sets(): −Σ f_i V_i over its points (N), from the output
-  /// state (serial: the current forces).
-  Vec3 reaction(const NodeSet& set) const;
+  /// Reaction force on the node set `set_name`: −Σ f_i V_i over its points (N), summed exactly over the ranks'
+  /// owned points (the same bits for any rank count). Collective.
+  Vec3 reaction(const std::string& set_name) const;
   /// Bytes held by this rank's points and bonds (an estimate for `peridot check`).
   std::size_t memory_bytes() const;
   /// Distributed: whether each rank made only its own part of the points (parallel/domain.hpp,
@@ -250,9 +254,8 @@ class Simulation {
   Discretization global_disc_;
   std::vector<NodeSet> global_node_sets_;
   State global_state_;
-  std::vector<double> global_energy_density_, global_work_, global_hourglass_work_;
   /// Per rigid wall with contact: symmetry, after gather_outputs(…, true): its mirror bonds' force density on
-  /// each point of the output discretization (3 per point; empty for other walls).
+  /// each owned point (3 per point; empty for other walls).
   std::vector<std::vector<double>> symmetry_force_density_;
   /// Where each rank's owned points go in the global order (rank 0, distributed): all ranks' global
   /// indices, rank after rank.
@@ -271,8 +274,7 @@ class Simulation {
   std::vector<double> contact_opened_;  ///< per bond: its pair's contact distance since it broke (ShortRangeContact)
   Halo contact_halo_;
   std::vector<int> owner_;
-  std::vector<double> contact_energy_, global_contact_energy_;  ///< J per point, for the totals
-  std::vector<double> global_contact_force_;  ///< distributed: the contact force density gathered to rank 0
+  std::vector<double> contact_energy_;  ///< J per point, for the totals
   std::uint64_t broken_bonds_ = 0, all_bonds_ = 0;  ///< directed, all ranks, at the last gather_outputs(…, true)
   std::unique_ptr<EnergyFailure> energy_failure_;  ///< null unless a block breaks bonds by their work
   std::unique_ptr<TemperatureField> temperature_;  ///< the deck's temperature field; null without one
