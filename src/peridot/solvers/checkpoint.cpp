@@ -72,7 +72,7 @@ CheckpointData collect_checkpoint(Simulation& sim) {
   CheckpointData data;
   std::vector<std::uint64_t> bond_offset;  // rank 0: where each global point's family starts
   if (comm.is_root()) {
-    const std::size_t n = sim.output_discretization().num_points();
+    const std::size_t n = sim.global_point_count();
     data.code_version = code_version();
     data.deck = checkpoint_fingerprint(sim.problem());
     data.time_step = sim.time_step();

@@ -60,35 +60,38 @@ std::vector<std::string> optional_exodus_fields(const Simulation& sim) {
 }
 
 std::string describe_setup(const Simulation& sim) {
-  const Discretization& disc = sim.output_discretization();
+  // From each rank's owned points and counts summed over the ranks (collective): no rank needs the whole problem.
+  const Discretization& disc = sim.discretization();
   const Problem& problem = sim.problem();
   const Communicator& comm = sim.communicator();
   std::ostringstream out;
   const double bonds = static_cast<double>(sim.global_bond_count());
-  const std::vector<BlockRange> ranges = block_ranges(disc);
+  const std::size_t points = sim.global_point_count();
+  std::vector<std::uint64_t> block_points(disc.block_names.size(), 0);
+  for (std::size_t i = 0; i < sim.num_owned(); ++i) ++block_points[static_cast<std::size_t>(disc.block[i])];
+  for (std::uint64_t& count : block_points) count = comm.sum(count);
   out << fmt::format("dimension        {}{}\n", disc.dimension,
                      disc.dimension == 2   ? (problem.plane == PlaneKind::stress ? " (plane stress)" : " (plane strain)")
                      : disc.dimension == 1 ? fmt::format(" (a bar of area {:g} m²)", problem.area)
                                            : std::string());
-  out << fmt::format("points           {}\n", disc.num_points());
+  out << fmt::format("points           {}\n", points);
   out << fmt::format("bond loops       {}\n", simd::describe());
   for (std::size_t b = 0; b < disc.block_names.size(); ++b) {
-    const BlockRange r = ranges[b];
     const MaterialParams& p = sim.model().params[b];
     out << fmt::format("  block {:<10} {} points, model {}, horizon {:.6g} m, critical stretch {}\n", disc.block_names[b],
-                       r.end - r.begin, model_name(p.model), p.horizon,
+                       block_points[b], model_name(p.model), p.horizon,
                        std::isfinite(p.critical_stretch) ? fmt::format("{:.6g}", p.critical_stretch) : "none");
     if (const EnergyFailure* energy = sim.energy_failure(); energy && p.fracture_energy > 0)
       out << fmt::format("  {:<16} energy criterion: Gc {:.6g} J/m^2, N_c {:g} micropotentials per cell, bond work "
                          "W V_i V_j >= {:.6g} J\n", "", p.fracture_energy, energy->micropotentials(b), energy->threshold(b));
   }
   out << fmt::format("bonds            {} directed ({:.1f} per point)\n", static_cast<std::uint64_t>(bonds),
-                     disc.num_points() ? bonds / static_cast<double>(disc.num_points()) : 0.0);
+                     points ? bonds / static_cast<double>(points) : 0.0);
   if (const SurfaceCorrectionResult& c = sim.surface_correction(); c.applied)
     out << fmt::format("surface correction: uniaxial energies within {:.1f} % of the classical ({:.1f} % uncorrected)\n",
                        100 * c.largest_deviation, 100 * c.largest_uncorrected);
-  for (const NodeSet& set : sim.output_node_sets())
-    out << fmt::format("  node set {:<10} {} points\n", set.name, set.points.size());
+  for (const NodeSet& set : sim.node_sets())  // each rank's owned points
+    out << fmt::format("  node set {:<10} {} points\n", set.name, comm.sum(static_cast<std::uint64_t>(set.points.size())));
   const double memory = static_cast<double>(sim.memory_bytes());
   if (comm.serial()) {
     out << fmt::format("memory           {:.1f} MiB (points and bonds)\n", memory / (1 << 20));

@@ -91,6 +91,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   // Distributed, the problems whose points are made on the lattice are made piece by piece: no rank holds
   // them all (parallel/domain.hpp, decompose_generated); other problems are discretized whole on every rank.
   const bool generated = generated_per_rank_ = !comm_.serial() && generated_by_window(problem_);
+  frames_ = problem_.output.exodus_every > 0;
   if (comm_.serial()) {
     disc_ = discretize(problem_);
     node_sets_ = build_node_sets(problem_, disc_);
@@ -122,21 +123,23 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     if (!empty.empty()) throw InputError(empty);
     mark_no_fail(disc_, sets);
     model_.no_fail = std::move(no_fail);
-    // What the outputs (rank 0) and the features that still read every point (short-range contact, symmetry
-    // walls) need of the whole problem.
+    // What Exodus frames (written by rank 0) and the features that still read every point (short-range
+    // contact, symmetry walls: on every rank) need of the whole problem; nothing without them.
     const bool everywhere = problem_.contact.has_value() ||
                             std::any_of(problem_.rigid_walls.begin(), problem_.rigid_walls.end(),
                                         [](const RigidWallSpec& w) { return w.contact == WallContactKind::symmetry; });
-    global_disc_ = assemble_discretization(everywhere);
-    for (const NodeSet& set : node_sets_) {
-      std::vector<std::uint32_t> global;
-      for (std::uint32_t i : set.points) global.push_back(global_index_[i]);
-      global = comm_.gather(global);
-      std::sort(global.begin(), global.end());
-      global_node_sets_.push_back({set.name, std::move(global)});
+    if (frames_ || everywhere) global_disc_ = assemble_discretization(everywhere);
+    if (frames_) {
+      for (const NodeSet& set : node_sets_) {
+        std::vector<std::uint32_t> global;
+        for (std::uint32_t i : set.points) global.push_back(global_index_[i]);
+        global = comm_.gather(global);
+        std::sort(global.begin(), global.end());
+        global_node_sets_.push_back({set.name, std::move(global)});
+      }
+      gathered_index_ = comm_.gather(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() +
+                                                                static_cast<std::ptrdiff_t>(owned_)));
     }
-    gathered_index_ = comm_.gather(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() +
-                                                              static_cast<std::ptrdiff_t>(owned_)));
   } else {
     global_disc_ = discretize(problem_);
     global_points_ = global_disc_.num_points();
@@ -200,7 +203,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   model_.initialize_point_arrays(state_.history);
   compute_weighted_volume(model_, state_.weighted_volume);
   halo_.exchange(state_.weighted_volume);
-  if (!comm_.serial()) gather_field(state_.weighted_volume.data(), 1, global_state_.weighted_volume);  // constant
+  if (!comm_.serial() && frames_) gather_field(state_.weighted_volume.data(), 1, global_state_.weighted_volume);  // constant
   model_.inverse_weighted_volume.resize(disc_.num_points());
   for (std::size_t i = 0; i < disc_.num_points(); ++i) {
     const double m = state_.weighted_volume[i];

@@ -172,7 +172,8 @@ class Simulation {
   /// Collective.
   void gather_outputs(bool fields, bool totals);
   /// After gather_outputs(true, …), on rank 0 (any rank when serial): the whole problem's points, node sets
-  /// and state in the global point order (an Exodus frame's content).
+  /// and state in the global point order (an Exodus frame's content). Distributed, made only for decks that
+  /// write Exodus frames (and on every rank for short-range contact and symmetry walls).
   const Discretization& output_discretization() const { return comm_.serial() ? disc_ : global_disc_; }
   const std::vector<NodeSet>& output_node_sets() const { return comm_.serial() ? node_sets_ : global_node_sets_; }
   const State& output_state() const { return comm_.serial() ? state_ : global_state_; }
@@ -242,6 +243,7 @@ class Simulation {
   Discretization disc_;
   std::size_t owned_ = 0, global_points_ = 0;
   bool generated_per_rank_ = false;
+  bool frames_ = false;  ///< the deck writes Exodus frames: rank 0 gathers each frame's fields
   double setup_seconds_ = 0;
   SurfaceCorrectionResult surface_correction_;
   std::vector<std::uint32_t> global_index_;
