@@ -24,7 +24,11 @@ TEST(ExactSum, CancellationThatNaiveSummationLoses) {
   EXPECT_EQ(sum_of({0x1p-1074, 0x1p-1074}), 0x1p-1073);  // subnormals
   EXPECT_EQ(sum_of({-2.5, 1.25, -0.75}), -2.0);
   EXPECT_EQ(sum_of({}), 0.0);
-  EXPECT_TRUE(std::isnan(sum_of({1.0, INFINITY})));
+  EXPECT_EQ(sum_of({1.0, INFINITY, 2.0}), INFINITY);  // as a floating-point sum would give
+  EXPECT_EQ(sum_of({-INFINITY, 1.0}), -INFINITY);
+  EXPECT_TRUE(std::isnan(sum_of({INFINITY, -INFINITY})));
+  EXPECT_TRUE(std::isnan(sum_of({1.0, NAN})));
+  EXPECT_EQ(sum_of({0x1.fffffffffffffp1023, 0x1.fffffffffffffp1023}), INFINITY);  // finite terms, a sum beyond range
 }
 
 TEST(ExactSum, RoundsTiesToEvenOnce) {
@@ -66,7 +70,7 @@ TEST(ExactSum, SameBitsForAnyOrderAndSplit) {
     ExactSum::Digits da = a.canonical(), db = b.canonical();
     for (int k = 0; k < ExactSum::digits; ++k) da[k] += db[k];
     ExactSum reduced;
-    reduced.load(da, false);
+    reduced.load(da, 0);
     EXPECT_EQ(reduced.value(), reference);
   }
 }

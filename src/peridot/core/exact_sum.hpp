@@ -18,11 +18,14 @@ class ExactSum {
 
   ExactSum() { digits_.fill(0); }
 
-  /// Adds a finite x exactly (a non-finite x makes value() NaN).
+  /// Non-finite terms, as flags: the sum is +∞ with only +∞ among them, −∞ with only −∞, else NaN.
+  enum Special : std::uint8_t { plus_infinity = 1, minus_infinity = 2, not_a_number = 4 };
+
+  /// Adds x exactly (a non-finite x is remembered as such).
   void add(double x) {
     if (x == 0) return;
     if (!std::isfinite(x)) {
-      non_finite_ = true;
+      special_ |= std::isnan(x) ? not_a_number : x > 0 ? plus_infinity : minus_infinity;
       return;
     }
     int exponent = 0;
@@ -53,7 +56,7 @@ class ExactSum {
     Digits theirs = other.digits_;
     carry(theirs);
     for (int k = 0; k < digits; ++k) digits_[k] += theirs[k];
-    non_finite_ = non_finite_ || other.non_finite_;
+    special_ |= other.special_;
     normalize();
   }
 
@@ -64,17 +67,19 @@ class ExactSum {
     carry(d);
     return d;
   }
-  /// Replaces the sum by the given digits (a sum of canonical() of every part) and the non-finite flag.
-  void load(const Digits& d, bool non_finite) {
+  /// Replaces the sum by the given digits (a sum of canonical() of every part) and non-finite flags (Special).
+  void load(const Digits& d, std::uint8_t special) {
     digits_ = d;
-    non_finite_ = non_finite;
+    special_ = special;
     normalize();
   }
-  bool non_finite() const { return non_finite_; }
+  std::uint8_t special() const { return special_; }
 
   /// The sum rounded to the nearest double (ties to even).
   double value() const {
-    if (non_finite_) return std::numeric_limits<double>::quiet_NaN();
+    if (special_ == plus_infinity) return std::numeric_limits<double>::infinity();
+    if (special_ == minus_infinity) return -std::numeric_limits<double>::infinity();
+    if (special_ != 0) return std::numeric_limits<double>::quiet_NaN();
     Digits d = canonical();
     const bool negative = d[digits - 1] < 0;
     if (negative) {  // two's complement of the whole number, digit by digit
@@ -129,7 +134,7 @@ class ExactSum {
 
   Digits digits_;
   std::int64_t pending_ = 0;
-  bool non_finite_ = false;
+  std::uint8_t special_ = 0;
 };
 
 }  // namespace peridot

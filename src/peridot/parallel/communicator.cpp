@@ -106,19 +106,23 @@ std::vector<int> Communicator::offsets(const std::vector<int>& count) {
 
 void Communicator::sum(std::vector<ExactSum>& sums) const {
   if (serial()) return;
-  constexpr std::size_t width = ExactSum::digits + 1;  // the digits, then a count of non-finite terms' ranks
+  constexpr std::size_t width = ExactSum::digits + 3;  // the digits, then how many ranks had each Special flag
   std::vector<std::int64_t> digits;
   for (const ExactSum& s : sums) {
     const ExactSum::Digits d = s.canonical();
     digits.insert(digits.end(), d.begin(), d.end());
-    digits.push_back(s.non_finite() ? 1 : 0);
+    for (std::uint8_t flag : {ExactSum::plus_infinity, ExactSum::minus_infinity, ExactSum::not_a_number})
+      digits.push_back((s.special() & flag) ? 1 : 0);
   }
   MPI_Allreduce(MPI_IN_PLACE, digits.data(), static_cast<int>(digits.size()), MPI_INT64_T, MPI_SUM, comm_);
   for (std::size_t k = 0; k < sums.size(); ++k) {
     ExactSum::Digits d;
     const auto first = digits.begin() + static_cast<std::ptrdiff_t>(k * width);
     std::copy(first, first + ExactSum::digits, d.begin());
-    sums[k].load(d, first[ExactSum::digits] > 0);
+    std::uint8_t special = 0;
+    for (int f = 0; f < 3; ++f)
+      if (first[ExactSum::digits + f] > 0) special |= static_cast<std::uint8_t>(1 << f);
+    sums[k].load(d, special);
   }
 }
 

@@ -3,8 +3,8 @@
 // MPI_COMM_WORLD; a run started directly is one rank and calls no MPI function at all, so the serial
 // program needs neither a launcher nor an MPI daemon. Every collective here is deterministic: min, max,
 // logical or and integer sums do not depend on the order in which ranks contribute. Floating-point sums
-// are never reduced across ranks: they are gathered to rank 0 in the global point order and added there
-// (Simulation), so a printed total is the same bits for any number of ranks.
+// are reduced across ranks only as exact sums (sum(std::vector<ExactSum>&): integers) or as the fixed-point
+// reproducible_sum below, so a printed total is the same bits for any number of ranks.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

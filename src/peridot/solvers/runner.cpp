@@ -309,7 +309,7 @@ class History {
       if (found != last && *found == point)
         value[0].add(point_field(sim_.state(), field, static_cast<std::size_t>(found - index.begin())));
     }
-    sim_.communicator().sum(value);  // one term in all: the owner's value (a non-finite one reads as NaN)
+    sim_.communicator().sum(value);  // one term in all: the owner's value
     return value[0].value();
   }
   Simulation& sim_;

@@ -14,8 +14,9 @@
 // Distributed (mpirun): each rank integrates its owned points, its ghosts refreshed from their owners
 // after every pass that changes what a bond loop reads of a partner (u after the drift, θ after the
 // dilatation, m once); parallel/domain.hpp says why every owned value is then bitwise the serial one.
-// Outputs are gathered to rank 0 in the global point order (gather_outputs), where every total is summed
-// exactly as a serial run sums it. External work is kept per point for the same reason.
+// History totals are exact sums over each rank's owned points and over the ranks (output_totals), the same
+// bits for any rank count; an Exodus frame's fields are gathered to rank 0 in the global point order
+// (gather_outputs). External work is kept per point, to be summed the same way.
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -46,8 +47,8 @@
 
 namespace peridot {
 
-/// Global quantities of one instant; sums taken in a fixed order (the global point order), so identical
-/// for any thread and rank count.
+/// Global quantities of one instant; every sum exact and rounded once (core/exact_sum.hpp), so identical for
+/// any thread and rank count.
 struct Totals {
   double external_work = 0;   ///< J, work of supports, body forces and contact forces since t = 0
   std::vector<Vec3> rigid_force;  ///< N, the points' contact force on each rigid wall and body
