@@ -15,6 +15,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "peridot/output/exodus_pieces.hpp"
 #include "peridot/core/simd.hpp"
 #include "peridot/deck/deck.hpp"
 #include "peridot/deck/model_schema.hpp"
@@ -104,6 +105,12 @@ int main(int argc, char** argv) {
   import->add_option("deck", deck, "the Peridigm deck (.yaml or .xml)")->required();
   import->add_option("-o,--output", translated, "the Peridot deck to write (default: DECK.peridot.yaml beside the Peridigm deck)");
 
+  std::string pieces, joined;
+  CLI::App* join = app.add_subcommand("join", "merge the Exodus pieces of a distributed run (NAME.N.0 … NAME.N.N-1) into one file, "
+                                              "the file a serial run writes");
+  join->add_option("results", pieces, "the Exodus file the pieces are of, e.g. out/results.e for out/results.e.4.*")->required();
+  join->add_option("-o,--output", joined, "the file to write (default: the name the pieces are of)");
+
   CLI::App* info = app.add_subcommand("info", "list every model, key, unit and default");
   info->add_flag("--markdown", markdown, "print Markdown: docs/deck.md, or docs/models/NAME.md with --model");
   const std::vector<std::string_view> models = peridot::model_names();
@@ -137,6 +144,18 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (import->parsed()) return import_peridigm(deck, translated, root);
+    if (join->parsed()) {
+      if (!root) return 0;
+      try {
+        const int frames = peridot::join_exodus(pieces, joined.empty() ? pieces : joined);
+        std::cout << (joined.empty() ? pieces : joined) << ": " << frames << " frame" << (frames == 1 ? "" : "s") << " of "
+                  << peridot::exodus_piece_paths(pieces).size() << " pieces\n";
+        return 0;
+      } catch (const std::runtime_error& e) {
+        std::cerr << "error: peridot join: " << e.what() << '\n';
+        return exit_input_error;
+      }
+    }
     peridot::Problem problem = peridot::load_deck(deck);
     problem.memory_limit = static_cast<double>(max_memory);
     if (!output_dir.empty()) problem.output.directory = std::filesystem::absolute(output_dir).string();

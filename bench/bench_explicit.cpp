@@ -222,7 +222,7 @@ int main(int argc, char** argv) {
   }
 
   const Totals totals = sim.totals();
-  const double points = static_cast<double>(sim.output_discretization().num_points());
+  const double points = static_cast<double>(sim.discretization().num_points());
   const double bonds = static_cast<double>(sim.global_bond_count());
   const double cores = static_cast<double>(o.threads) * comm.size();
   const double updates_per_s_core = bonds * o.steps / run_s / cores;

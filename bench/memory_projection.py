@@ -8,9 +8,10 @@ rank"; the constants below are those measurements, stated where they come from).
 Each rank owns a cube of n = N / R lattice points (side L = n^(1/3)); its ghosts are the lattice points within
 the horizon (3.015 spacings) outside the cube, counted on the lattice (an interior rank, all six faces). Per rank:
   memory = M0 + P·(n + ghosts) + B·bonds,  bonds = 122 n (a full LPS family at δ = 3.015 Δx; surfaces have fewer)
-and on rank 0, for decks that write Exodus frames, A·N more (the assembled problem) plus G·N during each frame
-(the gathered fields). A frame is F bytes per point; written by rank 0 at the stated bandwidth, or as one file per
-rank (the next step) at the file system's aggregate bandwidth.
+and, for decks that write Exodus frames, W·n more on every rank (its piece's writer: a copy of the volumes and
+one field's buffer; nothing is gathered, each rank writes its own file NAME.N.r). A frame is F bytes per point:
+F·n per rank, all ranks writing at once at the file system's aggregate bandwidth; for comparison, the same
+frame through one writer (one file written by one process) at the stated single-client bandwidth.
 """
 import math
 import os
@@ -23,8 +24,7 @@ M0 = 60 * 2**20      # B per rank: process, libraries, MPI (measured: peak minus
 P = 192              # B per point (state, positions, offsets: Simulation::memory_bytes for lps, checked against VmHWM)
 B = 5                # B per directed bond (neighbour index, broken flag)
 BONDS = 122          # bonds of an interior point, δ = 3.015 Δx
-A = 52               # B per point on rank 0 with Exodus frames (x, V, block, input id, global order, weighted volume)
-G = 150              # B per point gathered on rank 0 for a frame
+W = 16               # B per owned point for a rank's Exodus piece writer (volume copy, one field buffer)
 F = 13 * 8           # B per point per frame: 3D lps with damage writes 13 nodal doubles (u, v, f, damage, θ, m, V, fragment)
 ONE_WRITER = 1e9     # B/s: rank 0 writing one file (assumed: one client of a parallel file system)
 AGGREGATE = 100e9    # B/s: one file per rank, all writing at once (assumed: a large Lustre/GPFS system)
@@ -32,20 +32,21 @@ EXCHANGE = 32        # B per ghost per step (LPS: u and θ)
 
 
 def main():
-    print("| points | ranks | points/rank | ghosts/rank | halo fraction | memory/rank (MiB) | rank 0 with frames (GiB) | "
-          "messages/step/rank | halo bytes/step/rank | frame (GB) | frame by rank 0 (s) | frame, file per rank (s) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| points | ranks | points/rank | ghosts/rank | halo fraction | memory/rank (MiB) | with frames (MiB) | "
+          "messages/step/rank | halo bytes/step/rank | frame (GB) | frame per rank (MB) | frame, file per rank (s) | "
+          "frame through one writer (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for total in (1e8, 1e9):
         for ranks in (1000, 65000):
             n = total / ranks
             side = max(1, round(n ** (1 / 3)))
             ghosts = ghosts_of_box((side, side, side))
             memory = M0 + P * (n + ghosts) + B * BONDS * n
-            rank0 = memory + (A + G) * total
+            with_frames = memory + W * n
             frame = F * total
             print(f"| {total:.0e} | {ranks} | {n:.0f} | {ghosts} | {ghosts / n:.2f} | {memory / 2**20:.0f} | "
-                  f"{rank0 / 2**30:.0f} | 26 × 2 fields | {EXCHANGE * ghosts} | {frame / 1e9:.1f} | "
-                  f"{frame / ONE_WRITER:.0f} | {frame / AGGREGATE:.1f} |")
+                  f"{with_frames / 2**20:.0f} | 26 × 2 fields | {EXCHANGE * ghosts} | {frame / 1e9:.1f} | "
+                  f"{F * n / 1e6:.2f} | {frame / AGGREGATE:.1f} | {frame / ONE_WRITER:.0f} |")
 
 
 if __name__ == "__main__":

@@ -1,14 +1,15 @@
 #!/usr/bin/python3
 """Memory and set-up time of a distributed run against its rank count (docs/performance.md, "Memory per rank").
 
-    /usr/bin/python3 bench/mpi_memory.py [--peridot build/peridot] [--n 200] [--ranks 1,2,4] [--out DIR]
+    /usr/bin/python3 bench/mpi_memory.py [--peridot build/peridot] [--n 200] [--ranks 1,2,4] [--frames] [--out DIR]
 
 An n³-point LPS block (δ = 3.015 Δx, no damage, 2 explicit steps, no output file but the log) run with
 `mpirun --oversubscribe -np R` for each R (one thread per rank; R = 1 runs without mpirun). From each run.log:
 the peak resident memory of every rank (Linux VmHWM, read at the end of the run), the set-up time of the
 slowest rank (points, bonds and partition: Simulation's constructor) and the decomposition `peridot check`
 prints (owned points and ghosts per rank). n = 200 is the 8 000 000-point block of issue 25; it needs about
-15 GB on one rank.
+6.5 GB on one rank. With --frames the deck also writes an Exodus frame at every step (3 frames: steps 0, 1, 2;
+distributed, one piece per rank) and the table adds the time to write them and their size.
 """
 import argparse
 import os
@@ -16,6 +17,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 
 DECK = """discretization: {{dimension: 3, spacing: 1 mm, horizon_factor: 3.015}}
 materials:
@@ -25,7 +27,7 @@ bodies:
 initial_conditions:
   - {{velocity: {{x: "1e-3 * x"}}}}
 solver: {{num_steps: 2}}
-output: {{directory: out, progress: false}}
+output: {{directory: out, progress: false{frames}}}
 """
 
 
@@ -40,6 +42,7 @@ def main():
     p.add_argument("--peridot", default="build/peridot")
     p.add_argument("--n", type=int, default=200)
     p.add_argument("--ranks", default="1,2,4")
+    p.add_argument("--frames", action="store_true", help="write an Exodus frame at every step")
     p.add_argument("--out", default=None)
     a = p.parse_args()
     peridot = os.path.abspath(a.peridot)
@@ -47,14 +50,17 @@ def main():
     os.makedirs(work, exist_ok=True)
     deck = os.path.join(work, "block.yaml")
     with open(deck, "w") as f:
-        f.write(DECK.format(side=a.n * 1e-3))
+        f.write(DECK.format(side=a.n * 1e-3, frames=", exodus: {every: 1, file: block.e}" if a.frames else ""))
     print(f"{a.n}³ = {a.n ** 3} points, LPS, δ = 3.015 Δx; work in {work}")
-    print("| ranks | owned points per rank | ghosts (largest) | bonds | set-up (s) | peak resident per rank (MiB) | largest | sum | largest / one rank |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| ranks | owned points per rank | ghosts (largest) | bonds | set-up (s) | run (s) | Exodus (MB) | peak resident per rank (MiB) | largest | sum | largest / one rank |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     one = None
     for ranks in [int(r) for r in a.ranks.split(",")]:
         out = os.path.join(work, f"np{ranks}")
+        start = time.monotonic()
         launch(peridot, ranks, ["run", "-q", "-o", out, deck])
+        seconds = time.monotonic() - start
+        exodus = sum(os.path.getsize(os.path.join(out, f)) for f in os.listdir(out) if f.startswith("block.e")) / 1e6
         log = open(os.path.join(out, "run.log")).read()
         bonds = re.search(r"^bonds\s+(\d+) directed", log, re.M).group(1)
         setup = float(re.search(r"^set-up\s+points, bonds and partition in ([0-9.]+) s", log, re.M).group(1))
@@ -68,7 +74,7 @@ def main():
             owned, ghosts = f"{d.group(1)}–{d.group(2)}", d.group(3)
         largest = max(per_rank)
         one = one or largest
-        print(f"| {ranks} | {owned} | {ghosts} | {bonds} | {setup:.1f} | {', '.join(f'{v:.0f}' for v in per_rank)} | "
+        print(f"| {ranks} | {owned} | {ghosts} | {bonds} | {setup:.1f} | {seconds:.1f} | {exodus:.0f} | {', '.join(f'{v:.0f}' for v in per_rank)} | "
               f"{largest:.0f} | {sum(per_rank):.0f} | {largest / one:.3f} |")
         sys.stdout.flush()
 

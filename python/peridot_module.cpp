@@ -149,8 +149,8 @@ py::array field(const py::object& self, const std::string& name) {
   double* out = copy.mutable_data();
   std::fill(out, out + n, 0.0);
   if (!where.scalar) {
-    sim.gather_outputs(true, false);
-    const auto& outputs = sim.output_state().point_outputs;
+    sim.prepare_outputs(true, false);
+    const auto& outputs = sim.state().point_outputs;
     if (auto it = outputs.find(name); it != outputs.end() && it->second.size() >= n)
       std::copy(it->second.begin(), it->second.begin() + static_cast<std::ptrdiff_t>(n), out);
   }

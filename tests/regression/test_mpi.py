@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Distributed runs (issue: MPI domain decomposition). Every model, damage, loads, walls and outputs give the
 same bits on 1, 2, 3 and 4 ranks as a serial run: each deck runs once without mpirun and then under
-`mpirun --oversubscribe -np N` (more ranks than this machine's cores), and every byte of the Exodus file,
-the history and the resolved deck (but for its output directory) must match. Also: a deck error is reported once (not once per rank)
+`mpirun --oversubscribe -np N` (more ranks than this machine's cores), and every byte of the Exodus file (the
+ranks' pieces NAME.N.r merged by `peridot join`), the history and the resolved deck (but for its output
+directory) must match; where ParaView's Python (pvpython) is installed, ParaView reads the pieces as one data set
+with the serial run's values. Also: a deck error is reported once (not once per rank)
 with exit status 2 and nothing written, also when only some ranks can see it (a correspondence body bonded
 to another model's body, found from the local bonds); a numerical failure exits 3 on every rank with one
 message and the frames written so far readable; an output rank 0 cannot write stops every rank with one
@@ -16,6 +18,8 @@ import re
 import shutil
 import subprocess
 import sys
+
+from exodus_pieces import join_all, piece_sets
 
 DECKS = [  # (deck, what it covers)
     ("examples/quickstart/deck.yaml", "pmb 2D fracture: pre-crack, no-fail grips, velocity conditions, reaction, probe"),
@@ -61,7 +65,13 @@ def main():
 
     def peridot(args, ranks=None, timeout=600):
         cmd = [a.peridot] + args if ranks is None else [a.mpirun, "--oversubscribe", "-np", str(ranks), a.peridot] + args
-        return subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+        r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+        if r.returncode == 0 and args[0] == "run" and ranks and ranks > 1:  # its Exodus pieces, merged
+            out = args[args.index("-o") + 1]
+            ok, why = join_all(a.peridot, out, env)
+            if not ok:
+                r.returncode, r.stderr = 1, why
+        return r
 
     for deck, what in DECKS:
         path = os.path.join(a.source, deck)
@@ -85,6 +95,10 @@ def main():
                 if f == "resolved_deck.yaml":  # names its own output directory
                     return open(mine).read().replace(out, serial) == open(theirs).read()
                 return filecmp.cmp(mine, theirs, shallow=False)
+            pieces = piece_sets(out)
+            if n > 1 and any(f.endswith(".e") for f in outputs):
+                check(all(pieces.get(f) == n for f in outputs if f.endswith(".e")),
+                      f"{name}: {n} ranks wrote {n} Exodus pieces each ({pieces})")
             same = [f for f in outputs if identical(f)]
             check(same == outputs, f"{name}: {n} ranks, every byte of {', '.join(outputs)} as serial"
                   + ("" if same == outputs else f" (differ: {sorted(set(outputs) - set(same))})"))
@@ -179,7 +193,8 @@ def main():
     out = os.path.join(a.work, "blowup")
     r = peridot(["run", "-q", "-o", out, blowup], ranks=2)
     messages = re.findall(r"error: runaway \w+ at step \d+, time [0-9.e+-]+ s, point \d+", r.stderr)
-    check(r.returncode == 3 and len(messages) == 1 and os.path.getsize(os.path.join(out, "small.e")) > 0
+    check(r.returncode == 3 and len(messages) == 1 and piece_sets(out).get("small.e") == 2
+          and all(os.path.getsize(os.path.join(out, f"small.e.2.{k}")) > 0 for k in range(2))
           and "error: runaway" in open(os.path.join(out, "run.log")).read(),
           f"blow-up on 2 ranks: exit {r.returncode}, {len(messages)} message(s), frames and log kept")
 
@@ -199,6 +214,20 @@ def main():
     r = peridot(["run", "-q", "-o", os.path.join(blowup, "out"), blowup], ranks=2, timeout=120)
     check(r.returncode == 1 and sum(line.startswith("error: ") for line in r.stderr.splitlines()) == 1 and "cannot create" in r.stderr,
           f"unwritable output directory on 2 ranks: exit {r.returncode}, one message")
+
+    # ParaView reads the pieces as one data set, point by point the serial run's (where pvpython is installed).
+    pvpython = shutil.which("pvpython")
+    for name, n in (("exodus_small", 3), ("mpi_generated", 4)):
+        folder = os.path.join(a.work, name)
+        if not pvpython:
+            print(f"skip {name}: ParaView reading {n} pieces (no pvpython; Debian's paraview package has it)")
+            continue
+        r = subprocess.run([pvpython, "--force-offscreen-rendering", os.path.join(a.source, "tests", "regression", "paraview_pieces.py"),
+                            os.path.join(folder, "serial", "small.e"), os.path.join(folder, f"np{n}", f"small.e.{n}.0")],
+                           capture_output=True, text=True, env=env, timeout=600)
+        check(r.returncode == 0 and "paraview: same data set" in r.stdout,
+              f"{name}: ParaView ({pvpython}) reads the {n} pieces as one data set, every value the serial run's"
+              + ("" if r.returncode == 0 else "\n" + r.stdout[-2000:] + r.stderr[-2000:]))
 
     r = peridot(["check", os.path.join(a.source, "tests", "regression", "decks", "mpi_mixed.yaml")], ranks=2)
     check(r.returncode == 0 and r.stdout.count(": valid") == 1 and re.search(r"ranks +2 \(owned points", r.stdout)

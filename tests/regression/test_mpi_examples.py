@@ -2,7 +2,7 @@
 """Every example deck runs unchanged under mpirun: the first steps of each examples/*/deck*.yaml (its
 end_time or step count replaced by a short step count, a relaxation's tolerance loosened and its load steps cut to the first 4
 when it has more than 16, so that CI stays short; every other line as shipped) on 2 ranks give
-every byte of the Exodus file and the history of a serial run. The full-length runs are listed in
+every byte of the Exodus file (the two ranks' pieces merged by `peridot join`) and the history of a serial run. The full-length runs are listed in
 docs/parallel.md."""
 import argparse
 import filecmp
@@ -12,6 +12,8 @@ import re
 import shutil
 import subprocess
 import sys
+
+from exodus_pieces import join_all
 
 STEPS = 30
 LONG_RELAXATION, FIRST_LOAD_STEPS = 16, 4  # relaxation decks of more load steps run their first 4
@@ -62,6 +64,9 @@ def main():
             r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
             check(r.returncode == 0, f"{name}: {'serial' if ranks is None else f'{ranks} ranks'} run" +
                   ("" if r.returncode == 0 else "\n" + r.stdout + r.stderr))
+            if ranks and r.returncode == 0:
+                ok, why = join_all(a.peridot, out, env)
+                check(ok, f"{name}: the {ranks} ranks' Exodus pieces joined {why}")
             runs[ranks] = out
         outputs = sorted(f for f in os.listdir(runs[None]) if f.endswith((".e", ".csv")))
         same = [f for f in outputs if os.path.exists(os.path.join(runs[2], f))

@@ -3,7 +3,9 @@
 a run writes checkpoints (output.checkpoint every 7 steps, off the output schedules on purpose); a restart from
 one in the middle, into a folder holding the finished run's results, must leave every output (Exodus file,
 history, resolved deck) byte-identical to the uninterrupted run's. Distributed: checkpoints of a serial run
-restart on 2 ranks, and those of a 2-rank run on 3 ranks, with the same bytes as the serial run. A run stopped
+restart on 2 ranks, and those of a 2-rank run on 3 ranks, with the same bytes as the serial run (the Exodus
+frames carried over from the serial file, or from the 2-rank run's pieces, into the new run's pieces, merged
+by `peridot join` for the comparison). A run stopped
 by SIGTERM writes a checkpoint at its last step and its .partial results; the restart continues them to the
 same bytes. A checkpoint of another deck, of a changed deck, truncated, corrupt, of another code version or
 beyond the end is refused with exit 2 and nothing written."""
@@ -18,6 +20,8 @@ import time
 
 import netCDF4
 import yaml
+
+from exodus_pieces import join_all, piece_sets
 
 EVERY = 7  # steps between checkpoints: off the output schedules on purpose
 
@@ -61,11 +65,19 @@ def main():
         cmd = [a.peridot] + args if ranks == 1 else [a.mpirun, "--oversubscribe", "-np", str(ranks), a.peridot] + args
         return subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
 
-    def results(folder):
-        return sorted(f for f in os.listdir(folder) if f != "run.log" and not f.startswith("checkpoint_"))
+    def results(folder, pieces=False):
+        """The result files (and with `pieces` the Exodus pieces of a distributed run)."""
+        sets = piece_sets(folder)
+        is_piece = lambda f: any(f.startswith(name + f".{n}.") for name, n in sets.items())
+        return sorted(f for f in os.listdir(folder)
+                      if f != "run.log" and not f.startswith("checkpoint_") and (pieces or not is_piece(f)))
 
     def same_results(mine, reference):
-        """Every result file of reference byte-identical in mine (the resolved deck names its own folder)."""
+        """Every result file of reference byte-identical in mine (the resolved deck names its own folder); a
+        distributed run's Exodus pieces merged first."""
+        ok, why = join_all(a.peridot, mine, env)
+        if not ok:
+            return why
         names = results(reference)
         if results(mine) != names:
             return f"files {results(mine)} != {names}"
@@ -82,7 +94,7 @@ def main():
         """A folder holding reference's results (a finished run), restarted from checkpoint on `ranks` ranks."""
         shutil.rmtree(out, ignore_errors=True)
         os.makedirs(out)
-        for f in results(reference):
+        for f in results(reference, pieces=True):
             if f != "resolved_deck.yaml":
                 shutil.copy(os.path.join(reference, f), out)
         return peridot(["run", "-q", "-o", out, deck, "--restart", checkpoint], ranks)
@@ -129,7 +141,8 @@ def main():
                     continue
                 written = os.path.join(wrote, f"checkpoint_{middle}.nc")
             out = os.path.join(a.work, name, f"np{writers}to{readers}")
-            r = restart_into(full, written, deck, out, readers)
+            # Into the folder of the run that wrote the checkpoint: a 2-rank run's pieces continue on 3 ranks.
+            r = restart_into(full if writers == 1 else wrote, written, deck, out, readers)
             why = r.stderr if r.returncode else same_results(out, full)
             check(not why, f"{name}: checkpoint of {writers} rank(s) restarted on {readers}, byte-identical to serial {why}")
 

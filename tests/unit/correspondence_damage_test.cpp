@@ -64,7 +64,7 @@ void run_checking(Simulation& sim, int every, Check check) {
   while (sim.state().step < sim.total_steps()) {
     sim.step();
     if (sim.state().step % every == 0 || sim.state().step == sim.total_steps()) {
-      sim.gather_outputs(true, true);
+      sim.prepare_outputs(true, true);
       check(sim);
     }
   }
@@ -77,7 +77,7 @@ TEST(JohnsonCookDamage, BondsBreakExactlyAtFailedPointsAndTheBarBreaks) {
   std::vector<std::uint8_t> was_broken(bonds.num_bonds(), 0);
   std::size_t mismatches = 0, healed = 0, stressed_failures = 0, failed = 0;
   run_checking(sim, 50, [&](Simulation& s) {
-    const State& state = s.output_state();
+    const State& state = s.state();
     const std::vector<double>& D = state.point_outputs.at("material_damage");
     const std::vector<double>& vm = state.point_outputs.at("von_mises_stress");
     failed = 0;
@@ -138,7 +138,7 @@ TEST(JohnsonCookDamage, LocalStressCouplingBreaksNoBondAndAFailedPointCarriesNoS
   Simulation sim(parse_deck(deck, "jc_local.yaml", "."));
   std::size_t failed = 0, stressed = 0;
   run_checking(sim, 100, [&](Simulation& s) {
-    const State& state = s.output_state();
+    const State& state = s.state();
     const std::vector<double>& D = state.point_outputs.at("material_damage");
     const std::vector<double>& vm = state.point_outputs.at("von_mises_stress");
     failed = 0;

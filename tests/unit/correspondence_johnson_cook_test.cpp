@@ -224,8 +224,8 @@ output: {progress: false}
   Simulation sim(parse_deck(deck, "jc.yaml", "."));
   sim.initialize();
   while (sim.state().step < sim.total_steps()) sim.step();
-  sim.gather_outputs(true, true);
-  const State& s = sim.output_state();
+  sim.prepare_outputs(true, true);
+  const State& s = sim.state();
   double largest_eqps = 0, hottest = 0;
   for (std::size_t i = 0; i < sim.num_owned(); ++i) {
     largest_eqps = std::max(largest_eqps, s.history.plastic_strain[i]);

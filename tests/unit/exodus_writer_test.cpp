@@ -5,6 +5,8 @@
 #include "peridot/output/exodus_writer.hpp"
 
 #include <gtest/gtest.h>
+
+#include "support/scratch_dir.hpp"
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -27,19 +29,10 @@ using peridot::Discretization;
 using peridot::ExodusWriter;
 using peridot::NodeSetOutput;
 using peridot::State;
+using peridot::testing::scratch_dir;
 
 namespace {
 
-/// A scratch directory per test (ctest runs tests in parallel processes).
-fs::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  fs::path dir = fs::temp_directory_path() /
-                 ("peridot_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" +
-                  std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 /// n×n×n (or n×n) lattice of spacing h; block 1 for x < middle, block 0 otherwise, so that blocks interleave
 /// in point order; input_id reversed so that the node map is not the identity.

@@ -56,7 +56,7 @@ TEST(CorrespondenceSolver, PrescribedSimpleShearReproducesTheMaterialPointDriver
                               fmt::format("{{num_steps: {}, time_step: {}}}", steps, dt)));
   sim.initialize();
   for (int k = 0; k < steps; ++k) sim.step();
-  sim.gather_outputs(true, false);
+  sim.prepare_outputs(true, false);
   const auto driver = correspondence::run_simple_shear(J2Viscoplastic::aluminium_6061_t6(), rate, dt, steps);
   const Mat3 expected = driver.back().cauchy_stress;
   const double expected_eqps = driver.back().history.equivalent_plastic_strain;
@@ -191,7 +191,7 @@ solver: {{end_time: 12 us}}
   std::vector<double> times, strain, stress, von_mises, lateral, eqps, section_strain, section_stress, section_vm;
   while (sim.state().step < sim.total_steps()) {
     sim.step();
-    sim.gather_outputs(true, false);
+    sim.prepare_outputs(true, false);
     const auto& out = sim.state().point_outputs;
     times.push_back(sim.state().time);
     strain.push_back(out.at("green_lagrange_strain_zz")[centre]);

@@ -111,7 +111,7 @@ TEST(DynamicRelaxation, BodyForceIsCarriedByTheSupportInEveryLoadStep) {
   Simulation sim(p);
   sim.initialize();
   const NodeSet* left = nullptr;
-  for (const NodeSet& set : sim.output_node_sets())
+  for (const NodeSet& set : sim.node_sets())
     if (set.name == "left") left = &set;
   ASSERT_NE(left, nullptr);
   double free_volume = 0;

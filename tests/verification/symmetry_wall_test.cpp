@@ -106,7 +106,7 @@ TEST(SymmetryWall, HomogeneousCompressionLoadsThePointsNextToThePlaneAsInteriorP
     auto sim = std::make_unique<Simulation>(deck(box, rest + "rigid_walls:\n  - " + wall + "\n"));
     sim->initialize();
     for (int k = 0; k < 50; ++k) sim->step();
-    sim->gather_outputs(true, true);
+    sim->prepare_outputs(true, true);
     return sim;
   };
   const auto symmetric = run("{name: anvil, point: [0, 0, 0], normal: [0, 0, 1], contact: symmetry}");

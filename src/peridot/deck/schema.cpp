@@ -456,7 +456,8 @@ std::vector<SectionSpec> make_sections() {
                 {.key = "checkpoint", .type = VT::mapping,
                  .description = "restart files (see output.checkpoint); omit for none"},
                 {.key = "progress", .type = VT::boolean, .default_yaml = "true", .description = "print progress to the terminal"}}});
-  s.push_back({"output.exodus", "Exodus II field output",
+  s.push_back({"output.exodus", "Exodus II field output: one file; a distributed run writes one piece per rank, FILE.N.r, "
+               "which ParaView reads as one data set and `peridot join` merges into the serial file (docs/parallel.md)",
                {{.key = "every", .type = VT::integer, .default_yaml = "100", .range = at_least_one, .description = "steps between frames"},
                 {.key = "file", .type = VT::text, .default_yaml = "results.e", .description = "file name in the output folder"}}});
   s.push_back({"output.history", "CSV time history: energies, reactions, probes",

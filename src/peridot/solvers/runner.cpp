@@ -21,6 +21,7 @@
 #include "peridot/core/simd.hpp"
 #include "peridot/materials/models.hpp"
 #include "peridot/output/csv_writer.hpp"
+#include "peridot/output/exodus_pieces.hpp"
 #include "peridot/output/exodus_writer.hpp"
 #include "peridot/solvers/checkpoint.hpp"
 #include "peridot/state/point_fields.hpp"
@@ -147,9 +148,11 @@ class StopSignals {
 class ResultFiles {
  public:
   explicit ResultFiles(fs::path dir) : dir_(std::move(dir)) {}
-  /// The path to write `name` to; a stale partial file of that name is removed first.
-  fs::path partial(const std::string& name) {
+  /// The path to write `name` to; a stale partial file of that name is removed first. `shown`: how
+  /// partial_names() names it (a piece: the whole set).
+  fs::path partial(const std::string& name, const std::string& shown = {}) {
     names_.push_back(name);
+    shown_.push_back((shown.empty() ? name : shown) + ".partial");
     const fs::path path = dir_ / (name + ".partial");
     fs::remove(path);
     return path;
@@ -157,15 +160,11 @@ class ResultFiles {
   void publish() const {
     for (const std::string& name : names_) fs::rename(dir_ / (name + ".partial"), dir_ / name);
   }
-  std::string partial_names() const {
-    std::vector<std::string> names;
-    for (const std::string& name : names_) names.push_back(name + ".partial");
-    return fmt::format("{}", fmt::join(names, ", "));
-  }
+  std::string partial_names() const { return fmt::format("{}", fmt::join(shown_, ", ")); }
 
  private:
   fs::path dir_;
-  std::vector<std::string> names_;
+  std::vector<std::string> names_, shown_;
 };
 
 
@@ -240,7 +239,7 @@ class History {
   std::int64_t copy_rows(const std::string& earlier, std::int64_t last_step, std::int64_t every) {
     return writer_->copy_rows(earlier, last_step, every);
   }
-  /// The row of this instant, on every rank (after Simulation::gather_outputs with totals). Collective.
+  /// The row of this instant, on every rank (after Simulation::prepare_outputs with totals). Collective.
   std::vector<double> row() const {
     const Totals t = sim_.output_totals();
     const State& s = sim_.state();
@@ -360,6 +359,39 @@ fs::path earlier_results(const fs::path& dir, const std::string& name) {
   return {};
 }
 
+/// The same for Exodus results, which a distributed run writes as pieces NAME.N.r: the files of the earlier
+/// run (stopped: its partial files moved aside; finished: NAME, or its pieces), whatever its rank count.
+std::vector<std::string> earlier_exodus_results(const fs::path& dir, const std::string& name) {
+  auto with_suffix = [&](const std::string& suffix) {  // NAME + suffix and NAME.N.r + suffix
+    std::vector<fs::path> found;
+    const std::string stem = name + ".";
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      const std::string file = entry.path().filename().string();
+      if (file.size() <= suffix.size() || file.compare(file.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
+      const std::string base = file.substr(0, file.size() - suffix.size());
+      if (base == name) found.push_back(entry.path());
+      else if (base.rfind(stem, 0) == 0 && is_piece_suffix(base.substr(stem.size()))) found.push_back(entry.path());
+    }
+    std::sort(found.begin(), found.end());
+    return found;
+  };
+  std::vector<std::string> earlier;
+  if (const auto partial = with_suffix(".partial"); !partial.empty()) {
+    for (const fs::path& file : partial) {
+      fs::path aside = file;
+      aside.replace_extension(".before-restart");
+      fs::rename(file, aside);
+      earlier.push_back(aside.string());
+    }
+    return earlier;
+  }
+  for (const fs::path& file : with_suffix(".before-restart")) earlier.push_back(file.string());  // a restart stopped early
+  if (!earlier.empty()) return earlier;
+  earlier = exodus_piece_paths((dir / name).string());
+  if (earlier.empty() && fs::exists(dir / name)) earlier.push_back((dir / name).string());
+  return earlier;
+}
+
 }  // namespace
 
 struct Run::Impl {
@@ -372,7 +404,7 @@ struct Run::Impl {
   RunOptions options;
   Simulation sim;  // every input error surfaces here, before anything is written
   const Communicator& comm;
-  const bool root;  // distributed, rank 0 writes every output (no rank does without write_files)
+  const bool root;  // distributed, rank 0 writes every output but the Exodus pieces (no rank does without write_files)
   const bool restart;
   const fs::path dir;
   ResultFiles results;
@@ -391,8 +423,18 @@ struct Run::Impl {
   /// goes into the run log as well as to stderr (the log may be the file that cannot be written).
   template <class Write>
   void on_root(Write&& write) {
+    on_ranks(root, write);
+  }
+  /// The same for what every rank writes (its Exodus piece).
+  template <class Write>
+  void on_every_rank(Write&& write) {
+    on_ranks(options.write_files, write);
+  }
+  /// `write` where `mine`; a failure on any rank stops every rank with its message. Collective.
+  template <class Write>
+  void on_ranks(bool mine, Write&& write) {
     std::string failure;
-    if (root) {
+    if (mine) {
       try {
         write();
       } catch (const std::exception& e) {
@@ -411,12 +453,23 @@ struct Run::Impl {
   void write_checkpoint();
   bool checkpoint_due(bool looked);
   /// Closed before they are moved into place; a failure to close is a failure to write.
+  /// Published, the new results replace every earlier one of their names: a whole Exodus file or pieces of
+  /// another rank count left by an earlier run are removed.
   void close_results(bool publish) {
     finished = true;
-    on_root([&] {
+    on_every_rank([&] {
       if (exodus) exodus->close();
-      if (history) history->close();
+      if (root && history) history->close();
       if (publish) results.publish();
+    });
+    if (!publish || !exodus) return;
+    on_root([&] {
+      const std::string name = (dir / sim.problem().output.exodus_file).string();
+      std::vector<std::string> written;
+      if (comm.serial()) written.push_back(name);
+      for (int r = 0; r < comm.size() && !comm.serial(); ++r) written.push_back(ExodusWriter::piece_path(name, r, comm.size()));
+      for (const std::string& file : exodus_result_files(name))
+        if (std::find(written.begin(), written.end(), file) == written.end()) fs::remove(file);
     });
   }
 };
@@ -451,18 +504,37 @@ void Run::Impl::open_outputs() {
     if (!options.log && comm.is_root()) std::cerr << warning << '\n';  // quiet runs still hear about it
   }
 
-  fs::path earlier_exodus, earlier_history;  // a restart's earlier results, found before NAME.partial is new
+  std::vector<std::string> earlier_exodus;  // a restart's earlier results, found before NAME.partial is new
+  fs::path earlier_history;
   on_root([&] {
-    if (restart && output.exodus_every > 0) earlier_exodus = earlier_results(dir, output.exodus_file);
+    if (restart && output.exodus_every > 0) earlier_exodus = earlier_exodus_results(dir, output.exodus_file);
     if (restart && output.history_every > 0) earlier_history = earlier_results(dir, output.history_file);
-    if (output.exodus_every > 0) {
-      std::vector<NodeSetOutput> sets;
-      for (const NodeSet& set : sim.output_node_sets()) sets.push_back({set.name, set.points});
-      exodus = std::make_unique<ExodusWriter>(results.partial(output.exodus_file).string(), sim.output_discretization(), sets,
-                                              "peridot: " + problem.deck_path, problem.cross_section(),
-                                              optional_exodus_fields(sim));
-    }
   });
+  if (!comm.serial()) {  // every rank continues its own piece from them
+    std::string list = fmt::format("{}", fmt::join(earlier_exodus, "\n"));
+    list = comm.broadcast(list, 0);
+    earlier_exodus.clear();
+    for (std::size_t start = 0; start < list.size();) {
+      const std::size_t end = std::min(list.find('\n', start), list.size());
+      earlier_exodus.push_back(list.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  if (output.exodus_every > 0) {
+    // Serial: NAME by rank 0; distributed: each rank its piece NAME.N.r (output/exodus_writer.hpp).
+    const bool pieces = !comm.serial();
+    const ExodusPiece piece = pieces ? sim.exodus_piece() : ExodusPiece{};  // collective
+    on_every_rank([&] {
+      if (!pieces && !root) return;
+      std::vector<NodeSetOutput> sets;
+      for (const NodeSet& set : sim.node_sets()) sets.push_back({set.name, set.points});
+      const std::string name = pieces ? ExodusWriter::piece_path(output.exodus_file, comm.rank(), comm.size()) : output.exodus_file;
+      const std::string shown = pieces ? fmt::format("{}.{}.*", output.exodus_file, comm.size()) : std::string{};
+      exodus = std::make_unique<ExodusWriter>(results.partial(name, shown).string(), sim.discretization(), sets,
+                                              "peridot: " + problem.deck_path, problem.cross_section(),
+                                              optional_exodus_fields(sim), pieces ? &piece : nullptr);
+    });
+  }
   // Without files the history is still kept in memory (rank 0) for Run::history.
   if (output.history_every > 0) history = std::make_unique<History>(sim);
   on_root([&] {
@@ -472,6 +544,35 @@ void Run::Impl::open_outputs() {
     const std::int64_t step = sim.state().step;
     log.line(fmt::format("restarted from {} at step {}, t = {:.6g} s", options.restart, step, sim.state().time));
     std::vector<std::string> notes;
+    // A failure to read the earlier results is a note, not an error: the new results begin at this step.
+    if (output.exodus_every > 0) {
+      std::string copied, failure;
+      on_every_rank([&] {
+        if (!exodus || earlier_exodus.empty()) return;
+        try {
+          copied = fmt::format("{} frames", exodus->copy_frames(earlier_exodus, sim.time_step(), step, output.exodus_every));
+        } catch (const std::runtime_error& e) {
+          failure = e.what();
+        }
+      });
+      const int failing = comm.first_rank_with(!failure.empty());
+      if (failing >= 0) failure = comm.broadcast(failure, failing);
+      on_root([&] {
+        const std::string& name = output.exodus_file;
+        if (earlier_exodus.empty()) {
+          notes.push_back(fmt::format("{}: no earlier results to continue; it begins at step {}", name, step));
+        } else if (failing >= 0) {
+          notes.push_back(fmt::format("{}: not continued ({}); it begins at step {}", name, failure, step));
+        } else {
+          const fs::path first(earlier_exodus.front());
+          notes.push_back(fmt::format("{}: {} from {}{} up to step {}", name, copied, first.filename().string(),
+                                      earlier_exodus.size() > 1 ? fmt::format(" and {} more pieces", earlier_exodus.size() - 1) : "",
+                                      step));
+          for (const std::string& file : earlier_exodus)
+            if (fs::path(file).extension() == ".before-restart") fs::remove(file);
+        }
+      });
+    }
     on_root([&] {
       auto carry_over = [&](const std::string& name, const fs::path& earlier, auto&& copy) {
         if (earlier.empty()) {
@@ -486,10 +587,6 @@ void Run::Impl::open_outputs() {
         }
         if (earlier.extension() == ".before-restart") fs::remove(earlier);
       };
-      if (exodus)
-        carry_over(output.exodus_file, earlier_exodus, [&](const std::string& earlier) {
-          return fmt::format("{} frames", exodus->copy_frames(earlier, sim.time_step(), step, output.exodus_every));
-        });
       if (history)
         carry_over(output.history_file, earlier_history, [&](const std::string& earlier) {
           return fmt::format("{} rows", history->copy_rows(earlier, step, output.history_every));
@@ -508,16 +605,14 @@ void Run::Impl::write_outputs(bool force) {
   const bool frame = due(output.exodus_every) && frame_step != step;
   const bool row = due(output.history_every) && row_step != step;
   if (!frame && !row) return;
-  sim.gather_outputs(frame, row);
+  sim.prepare_outputs(frame, row);
   if (frame) frame_step = step;
   if (row) row_step = step;
   std::string non_finite;  // a total that overflowed while every point's values stayed finite
   const std::vector<double> values = row && history ? history->row() : std::vector<double>{};  // collective
   if (row && history && !options.write_files) non_finite = history->write(values);
-  on_root([&] {
-    if (frame) exodus->write_frame(sim.state().time, sim.output_state());
-    if (row) non_finite = history->write(values);
-  });
+  if (frame) on_every_rank([&] { if (exodus) exodus->write_frame(sim.state().time, sim.state()); });
+  if (row) on_root([&] { non_finite = history->write(values); });
   if (!row) return;
   const int failing = comm.first_rank_with(!non_finite.empty());
   if (failing >= 0)

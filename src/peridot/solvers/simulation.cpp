@@ -91,7 +91,6 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   // Distributed, the problems whose points are made on the lattice are made piece by piece: no rank holds
   // them all (parallel/domain.hpp, decompose_generated); other problems are discretized whole on every rank.
   const bool generated = generated_per_rank_ = !comm_.serial() && generated_by_window(problem_);
-  frames_ = problem_.output.exodus_every > 0;
   if (comm_.serial()) {
     disc_ = discretize(problem_);
     node_sets_ = build_node_sets(problem_, disc_);
@@ -123,27 +122,16 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     if (!empty.empty()) throw InputError(empty);
     mark_no_fail(disc_, sets);
     model_.no_fail = std::move(no_fail);
-    // What Exodus frames (written by rank 0) and the features that still read every point (short-range
-    // contact, symmetry walls: on every rank) need of the whole problem; nothing without them.
+    // What the features that still read every point (short-range contact, symmetry walls) need of the whole
+    // problem, on every rank; nothing without them.
     const bool everywhere = problem_.contact.has_value() ||
                             std::any_of(problem_.rigid_walls.begin(), problem_.rigid_walls.end(),
                                         [](const RigidWallSpec& w) { return w.contact == WallContactKind::symmetry; });
-    if (frames_ || everywhere) global_disc_ = assemble_discretization(everywhere);
-    if (frames_) {
-      for (const NodeSet& set : node_sets_) {
-        std::vector<std::uint32_t> global;
-        for (std::uint32_t i : set.points) global.push_back(global_index_[i]);
-        global = comm_.gather(global);
-        std::sort(global.begin(), global.end());
-        global_node_sets_.push_back({set.name, std::move(global)});
-      }
-      gathered_index_ = comm_.gather(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() +
-                                                                static_cast<std::ptrdiff_t>(owned_)));
-    }
+    if (everywhere) global_disc_ = assemble_discretization();
   } else {
     global_disc_ = discretize(problem_);
     global_points_ = global_disc_.num_points();
-    global_node_sets_ = build_node_sets(problem_, global_disc_);
+    const std::vector<NodeSet> global_node_sets = build_node_sets(problem_, global_disc_);
     LocalDomain domain = decompose(comm_, global_disc_, neighborhood, problem_.partition);
     if (needs_partner_bonds) bond_halo_ = build_partner_bonds(comm_, domain);
     disc_ = std::move(domain.disc);
@@ -151,12 +139,10 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     owned_ = domain.owned;
     global_index_ = std::move(domain.global_index);
     halo_ = std::move(domain.halo);
-    node_sets_ = local_node_sets(global_node_sets_, global_index_, owned_);
-    mark_no_fail(global_disc_, global_node_sets_);
+    node_sets_ = local_node_sets(global_node_sets, global_index_, owned_);
+    mark_no_fail(global_disc_, global_node_sets);
     if (!no_fail.empty())  // ghosts too: a bond to a protected ghost never breaks
       for (std::uint32_t g : global_index_) model_.no_fail.push_back(no_fail[g]);
-    gathered_index_ = comm_.gather(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() +
-                                                              static_cast<std::ptrdiff_t>(owned_)));
   }
   setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   model_.disc = &disc_;
@@ -203,7 +189,6 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   model_.initialize_point_arrays(state_.history);
   compute_weighted_volume(model_, state_.weighted_volume);
   halo_.exchange(state_.weighted_volume);
-  if (!comm_.serial() && frames_) gather_field(state_.weighted_volume.data(), 1, global_state_.weighted_volume);  // constant
   model_.inverse_weighted_volume.resize(disc_.num_points());
   for (std::size_t i = 0; i < disc_.num_points(); ++i) {
     const double m = state_.weighted_volume[i];
@@ -243,18 +228,17 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
 
 Simulation::~Simulation() = default;
 
-Discretization Simulation::assemble_discretization(bool everywhere) const {
+Discretization Simulation::assemble_discretization() const {
   Discretization all;
   all.dimension = disc_.dimension;
   all.block_names = disc_.block_names;
   const auto owned = static_cast<std::ptrdiff_t>(owned_);
-  auto collect = [&](const auto& local) { return everywhere ? comm_.all_gather(local) : comm_.gather(local); };
+  auto collect = [&](const auto& local) { return comm_.all_gather(local); };
   const std::vector<std::uint32_t> index = collect(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() + owned));
   const std::vector<double> x = collect(std::vector<double>(disc_.x.data(), disc_.x.data() + 3 * owned_));
   const std::vector<double> volume = collect(std::vector<double>(disc_.volume.begin(), disc_.volume.begin() + owned));
   const std::vector<std::int32_t> block = collect(std::vector<std::int32_t>(disc_.block.begin(), disc_.block.begin() + owned));
   const std::vector<std::uint32_t> input = collect(std::vector<std::uint32_t>(disc_.input_id.begin(), disc_.input_id.begin() + owned));
-  if (index.empty()) return all;  // not rank 0
   const std::size_t n = index.size();
   all.x.resize(n);
   all.volume.resize(n);
@@ -508,7 +492,7 @@ void Simulation::agree_on_failure(const std::string& message) {
   throw NumericalError(comm_.broadcast(message, failing));
 }
 
-void Simulation::gather_outputs(bool fields, bool totals) {
+void Simulation::prepare_outputs(bool fields, bool totals) {
   compute_damage(model_, state_.damage);
   fragments();
   if (fields) {
@@ -545,34 +529,25 @@ void Simulation::gather_outputs(bool fields, bool totals) {
       if (problem_.rigid_walls[w].contact == WallContactKind::symmetry && has_correspondence())
         correspondence_->symmetry_wall_force_density(w, symmetry_force_density_[w]);
   }
-  if (!fields || comm_.serial()) return;  // the totals are summed where the points are (output_totals)
-  State& g = global_state_;
-  g.time = state_.time;
-  g.step = state_.step;
-  std::vector<double> buffer;
-  auto vector_field = [&](const VectorField& local, VectorField& global) {
-    gather_field(local.data(), 3, buffer);
-    if (comm_.is_root()) {
-      global.resize(global_disc_.num_points());
-      std::copy(buffer.begin(), buffer.end(), global.data());
-    }
-  };
-  for (const PointField& field : point_fields()) {  // what is stored in State (the volume is constant)
-    if (field.constant) continue;
-    const FieldStorage local = field.in(state_), global = field.in(g);
-    if (local.vector) vector_field(*local.vector, *global.vector);
-    else if (local.scalar) gather_field(local.scalar->data(), 1, *global.scalar);
-  }
-  for (auto& [name, values] : state_.point_outputs) gather_field(values.data(), 1, g.point_outputs[name]);
 }
 
-void Simulation::gather_field(const double* local, int components, std::vector<double>& global) const {
-  const std::size_t c = static_cast<std::size_t>(components);
-  const std::vector<double> gathered = comm_.gather(std::vector<double>(local, local + c * owned_));
-  if (!comm_.is_root()) return;
-  global.resize(c * global_disc_.num_points());
-  for (std::size_t k = 0; k < gathered_index_.size(); ++k)
-    for (std::size_t d = 0; d < c; ++d) global[c * gathered_index_[k] + d] = gathered[c * k + d];
+ExodusPiece Simulation::exodus_piece() const {
+  ExodusPiece piece;
+  piece.rank = comm_.rank();
+  piece.ranks = comm_.size();
+  piece.global_points = global_points_;
+  piece.point_index.assign(global_index_.begin(), global_index_.begin() + static_cast<std::ptrdiff_t>(owned_));
+  const std::size_t bodies = std::max<std::size_t>(problem_.bodies.size(), 1);
+  std::vector<std::uint64_t> count(bodies, 0);
+  for (std::size_t i = 0; i < owned_; ++i) ++count[static_cast<std::size_t>(disc_.block.empty() ? 0 : disc_.block[i])];
+  for (std::size_t b = 0; b < bodies; ++b) {
+    const std::uint64_t total = comm_.sum(count[b]);
+    if (total == 0) continue;
+    piece.blocks.push_back(static_cast<std::int32_t>(b));
+    piece.block_sizes.push_back(total);
+  }
+  for (const NodeSet& set : node_sets_) piece.node_set_sizes.push_back(comm_.sum(static_cast<std::uint64_t>(set.points.size())));
+  return piece;
 }
 
 std::vector<std::string> Simulation::plasticity_summary() const {
@@ -618,7 +593,7 @@ std::vector<std::string> Simulation::plasticity_summary() const {
 }
 
 Totals Simulation::totals() {
-  gather_outputs(false, true);
+  prepare_outputs(false, true);
   return output_totals();
 }
 

@@ -15,8 +15,8 @@
 // after every pass that changes what a bond loop reads of a partner (u after the drift, θ after the
 // dilatation, m once); parallel/domain.hpp says why every owned value is then bitwise the serial one.
 // History totals are exact sums over each rank's owned points and over the ranks (output_totals), the same
-// bits for any rank count; an Exodus frame's fields are gathered to rank 0 in the global point order
-// (gather_outputs). External work is kept per point, to be summed the same way.
+// bits for any rank count; each rank writes its owned points' piece of an Exodus frame (exodus_piece), nothing
+// is gathered. External work is kept per point, to be summed the same way.
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -34,6 +34,7 @@
 #include "peridot/loads/node_sets.hpp"
 #include "peridot/loads/temperature.hpp"
 #include "peridot/neighbor/neighborhood.hpp"
+#include "peridot/output/exodus_writer.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/parallel/halo.hpp"
 #include "peridot/damage/critical_stretch.hpp"
@@ -167,22 +168,19 @@ class Simulation {
   /// same lines on every rank, for any rank count.
   std::vector<std::string> plasticity_summary() const;
 
-  /// Computes what the outputs read, which the step keeps only as far as it needs (damage, fragment labels,
-  /// and with `fields` the dilatation and correspondence fields of an Exodus frame, with `totals` the
-  /// per-point terms of the totals) and, distributed with `fields`, gathers the frame's fields to rank 0.
-  /// Collective.
-  void gather_outputs(bool fields, bool totals);
-  /// After gather_outputs(true, …), on rank 0 (any rank when serial): the whole problem's points, node sets
-  /// and state in the global point order (an Exodus frame's content). Distributed, made only for decks that
-  /// write Exodus frames (and on every rank for short-range contact and symmetry walls).
-  const Discretization& output_discretization() const { return comm_.serial() ? disc_ : global_disc_; }
-  const std::vector<NodeSet>& output_node_sets() const { return comm_.serial() ? node_sets_ : global_node_sets_; }
-  const State& output_state() const { return comm_.serial() ? state_ : global_state_; }
-  /// The totals, after gather_outputs(…, true), on every rank: each sum exact over the owned points and the
+  /// Computes, on each rank for its points, what the outputs read, which the step keeps only as far as it
+  /// needs: damage, fragment labels, and with `fields` the dilatation and correspondence fields of an Exodus
+  /// frame (in state()), with `totals` the per-point terms of the totals. Nothing is gathered: distributed,
+  /// each rank writes its own piece of a frame (exodus_piece()). Collective.
+  void prepare_outputs(bool fields, bool totals);
+  /// Distributed: this rank's piece of the Exodus output (output/exodus_writer.hpp): its owned points, their
+  /// global indices, the whole problem's blocks and node-set sizes. Collective.
+  ExodusPiece exodus_piece() const;
+  /// The totals, after prepare_outputs(…, true), on every rank: each sum exact over the owned points and the
   /// ranks (core/exact_sum.hpp), so the correctly rounded total, the same bits for any thread and rank count,
   /// with nothing gathered. Collective.
   Totals output_totals() const;
-  /// gather_outputs(false, true), then output_totals(). Collective.
+  /// prepare_outputs(false, true), then output_totals(). Collective.
   Totals totals();
   /// Kinetic plus stored energy (J) of the whole problem, on every rank, without gathering anything: the
   /// fixed-point sum of communicator.hpp (the same bits for any rank count, within 4e-19 N² of the largest
@@ -226,11 +224,9 @@ class Simulation {
  private:
   /// Labels state_.fragment, once per step (collective).
   void fragments();
-  /// The whole problem's points (x, V, block, input id) in the global order, from every rank's owned points:
-  /// on rank 0, or with `everywhere` on every rank. Collective.
-  Discretization assemble_discretization(bool everywhere) const;
-  /// Copies this rank's owned values of a per-point field into the global field on rank 0.
-  void gather_field(const double* local, int components, std::vector<double>& global) const;
+  /// The whole problem's points (x, V, block, input id) in the global order, on every rank, from every
+  /// rank's owned points. Collective.
+  Discretization assemble_discretization() const;
   /// Throws, on every rank, the first failing rank's InputError (none: no error anywhere). Collective.
   void agree_on_input_error(const std::optional<InputError>& error) const;
   /// Copies the owners' per-bond history into the partner-bond slots (after every commit).
@@ -244,25 +240,18 @@ class Simulation {
   Discretization disc_;
   std::size_t owned_ = 0, global_points_ = 0;
   bool generated_per_rank_ = false;
-  bool frames_ = false;  ///< the deck writes Exodus frames: rank 0 gathers each frame's fields
   double setup_seconds_ = 0;
   SurfaceCorrectionResult surface_correction_;
   std::vector<std::uint32_t> global_index_;
   Halo halo_;
   double collective_seconds_ = 0;  ///< in agree_on_failure
   Halo bond_halo_;  ///< partner-bond slots (BondList::reverse), for models that read their partner's bond
-  /// Distributed only: the whole problem (set-up, node sets) on rank 0, and on every rank where it was
-  /// discretized whole or where a feature reads every point (Simulation()); on rank 0 the gathered state of
-  /// the last gather_outputs.
+  /// Distributed only: the whole problem's points on every rank where it was discretized whole or where a
+  /// feature reads every point (Simulation()).
   Discretization global_disc_;
-  std::vector<NodeSet> global_node_sets_;
-  State global_state_;
-  /// Per rigid wall with contact: symmetry, after gather_outputs(…, true): its mirror bonds' force density on
+  /// Per rigid wall with contact: symmetry, after prepare_outputs(…, true): its mirror bonds' force density on
   /// each owned point (3 per point; empty for other walls).
   std::vector<std::vector<double>> symmetry_force_density_;
-  /// Where each rank's owned points go in the global order (rank 0, distributed): all ranks' global
-  /// indices, rank after rank.
-  std::vector<std::uint32_t> gathered_index_;
   BondList bonds_;
   std::vector<NodeSet> node_sets_;
   ModelContext model_;
@@ -278,7 +267,7 @@ class Simulation {
   Halo contact_halo_;
   std::vector<int> owner_;
   std::vector<double> contact_energy_;  ///< J per point, for the totals
-  std::uint64_t broken_bonds_ = 0, all_bonds_ = 0;  ///< directed, all ranks, at the last gather_outputs(…, true)
+  std::uint64_t broken_bonds_ = 0, all_bonds_ = 0;  ///< directed, all ranks, at the last prepare_outputs(…, true)
   std::unique_ptr<EnergyFailure> energy_failure_;  ///< null unless a block breaks bonds by their work
   std::unique_ptr<TemperatureField> temperature_;  ///< the deck's temperature field; null without one
   double temperature_time_ = std::numeric_limits<double>::quiet_NaN();  ///< the time model_.temperature is at
