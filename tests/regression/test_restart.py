@@ -5,7 +5,7 @@ one in the middle, into a folder holding the finished run's results, must leave 
 history, resolved deck) byte-identical to the uninterrupted run's. Distributed: checkpoints of a serial run
 restart on 2 ranks, and those of a 2-rank run on 3 ranks, with the same bytes as the serial run (the Exodus
 frames carried over from the serial file, or from the 2-rank run's pieces, into the new run's pieces, merged
-by `peridot join` for the comparison). A run stopped
+by `peridot join` for the comparison); a 2-rank run stopped by SIGTERM continues on 3 ranks. A run stopped
 by SIGTERM writes a checkpoint at its last step and its .partial results; the restart continues them to the
 same bytes. A checkpoint of another deck, of a changed deck, truncated, corrupt, of another code version or
 beyond the end is refused with exit 2 and nothing written."""
@@ -173,6 +173,31 @@ def main():
         check(not why, f"signal: restarted from step {steps[0]}, the .partial results continued to the same bytes {why}")
         check(not any(f.endswith((".partial", ".before-restart")) for f in os.listdir(stopped)),
               "signal: no .partial or .before-restart file left")
+
+    # Distributed: 2 ranks stopped by SIGTERM (mpirun passes it on to them) leave their Exodus pieces as
+    # NAME.2.r.partial and a checkpoint; the restart on 3 ranks continues them into 3 pieces.
+    stopped = os.path.join(a.work, "signal", "stopped_np2")
+    for delay in [2.0, 1.0, 4.0, 8.0]:
+        shutil.rmtree(stopped, ignore_errors=True)
+        proc = subprocess.Popen([a.mpirun, "--oversubscribe", "-np", "2", a.peridot, "run", "-q", "-o", stopped, long_deck],
+                                env=env, stderr=subprocess.PIPE, text=True)
+        time.sleep(delay)
+        proc.send_signal(signal.SIGTERM)
+        err = proc.communicate(timeout=600)[1]
+        if os.path.isdir(stopped) and checkpoints(stopped):
+            break
+    partial = sorted(f for f in os.listdir(stopped) if f.endswith(".partial")) if os.path.isdir(stopped) else []
+    steps = checkpoints(stopped) if os.path.isdir(stopped) else []
+    if check(len(steps) == 1 and "quickstart.e.2.0.partial" in partial and "quickstart.e.2.1.partial" in partial,
+             f"signal, 2 ranks: stopped with exit {proc.returncode}, one checkpoint ({steps}), the pieces as .partial "
+             f"({partial}) {err.strip()[-300:]}"):
+        r = peridot(["run", "-q", "-o", stopped, long_deck, "--restart", os.path.join(stopped, f"checkpoint_{steps[0]}.nc")], 3)
+        why = r.stderr if r.returncode else same_results(stopped, full)
+        check(not why and piece_sets(stopped) == {"quickstart.e": 3},
+              f"signal, 2 ranks: restarted on 3 ranks from step {steps[0]}, the 2 pieces continued into 3, joined the "
+              f"serial run's bytes {why}")
+        check(not any(f.endswith((".partial", ".before-restart")) for f in os.listdir(stopped)),
+              "signal, 2 ranks: no .partial or .before-restart file left")
 
     # By wall-clock time, keeping the newest two.
     timed = dict(text, output=dict(text["output"], checkpoint={"wall_time": "0.5 s", "keep": 2}))
