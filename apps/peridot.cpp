@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
       try {
         const int frames = peridot::join_exodus(pieces, joined.empty() ? pieces : joined);
         std::cout << (joined.empty() ? pieces : joined) << ": " << frames << " frame" << (frames == 1 ? "" : "s") << " of "
-                  << peridot::exodus_piece_paths(pieces).size() << " pieces\n";
+                  << peridot::piece_paths(pieces).size() << " pieces\n";
         return 0;
       } catch (const std::runtime_error& e) {
         std::cerr << "error: peridot join: " << e.what() << '\n';

@@ -8,11 +8,13 @@ PIECE = re.compile(r"^(?P<name>.+)\.(?P<count>\d+)\.(?P<rank>\d+)$")
 
 
 def piece_sets(folder):
-    """{NAME: N} for every complete set of pieces NAME.N.0 … NAME.N.N-1 in folder."""
+    """{NAME: N} for every complete set of Exodus pieces NAME.N.0 … NAME.N.N-1 in folder (not the checkpoints,
+    checkpoint_<step>.nc.N.r)."""
     found = {}
     for f in os.listdir(folder):
         m = PIECE.match(f)
-        if m and len(m["rank"]) == len(m["count"]) and int(m["rank"]) < int(m["count"]):
+        if m and len(m["rank"]) == len(m["count"]) and int(m["rank"]) < int(m["count"]) \
+                and not re.match(r"checkpoint_\d+\.nc$", m["name"]):
             found.setdefault((m["name"], int(m["count"])), set()).add(int(m["rank"]))
     return {name: count for (name, count), ranks in found.items() if ranks == set(range(count))}
 

@@ -12,6 +12,7 @@ beyond the end is refused with exit 2 and nothing written."""
 import argparse
 import filecmp
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -107,9 +108,11 @@ def main():
         return copy
 
     def checkpoints(folder):
-        steps = sorted(int(f[len("checkpoint_"):-3]) for f in os.listdir(folder) if f.startswith("checkpoint_"))
-        return steps
+        """The steps of the checkpoints in folder: checkpoint_<step>.nc, or a distributed run's pieces of it."""
+        names = [re.match(r"checkpoint_(\d+)\.nc(\.\d+\.\d+)?$", f) for f in os.listdir(folder)]
+        return sorted({int(m.group(1)) for m in names if m})
 
+    full_quick = os.path.join(a.work, "quickstart", "full")
     for source, distributed, every in DECKS:
         name = os.path.basename(os.path.dirname(source)) if source.endswith("/deck.yaml") else os.path.splitext(os.path.basename(source))[0]
         deck = with_checkpoints(os.path.join(a.source, source), name, every)
@@ -252,6 +255,19 @@ def main():
         nc.setncattr("code_version", "0.0.1 (elsewhere)")
     refused("another code version", long_deck, version, "restart it with the version that wrote it")
     refused("a file that is not one", long_deck, long_deck, "cannot read checkpoint")
+    # A distributed run's checkpoint is one piece per rank (each with its own points only); one missing is refused.
+    np2 = os.path.join(a.work, "quickstart", "np2")
+    step = checkpoints(np2)[0]
+    pieces = [os.path.join(np2, f"checkpoint_{step}.nc.2.{r}") for r in range(2)]
+    check(all(os.path.exists(p) for p in pieces) and not os.path.exists(os.path.join(np2, f"checkpoint_{step}.nc"))
+          and all(os.path.getsize(p) < os.path.getsize(os.path.join(full_quick, f"checkpoint_{step}.nc")) for p in pieces),
+          f"2 ranks write checkpoint_{step}.nc as 2 pieces, each smaller than the serial run's file")
+    lacking = os.path.join(a.work, "lacking")
+    shutil.rmtree(lacking, ignore_errors=True)
+    os.makedirs(lacking)
+    shutil.copy(pieces[0], lacking)
+    refused("a piece missing", os.path.join(a.work, "quickstart.yaml"), os.path.join(lacking, f"checkpoint_{step}.nc"),
+            f"checkpoint_{step}.nc.2.1 is missing")
 
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0

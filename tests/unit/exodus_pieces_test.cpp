@@ -170,7 +170,7 @@ TEST(ExodusPieces, JoinedPiecesAreTheSerialFileByteForByte) {
   EXPECT_EQ(piece.num_points(), 9u);
   EXPECT_EQ(piece.point_index(), owners[2]);
   EXPECT_EQ(ExodusInput((dir / "out.e.4.3").string()).num_points(), 0u);  // the rank without points
-  EXPECT_EQ(peridot::exodus_piece_paths((dir / "out.e").string()).size(), 4u);
+  EXPECT_EQ(peridot::piece_paths((dir / "out.e").string()).size(), 4u);
   EXPECT_EQ(peridot::join_exodus((dir / "out.e").string(), (dir / "out.e").string()), 3);
   EXPECT_EQ(bytes(dir / "out.e"), bytes(dir / "serial.e"));
   fs::remove_all(dir);
@@ -196,7 +196,7 @@ TEST(ExodusPieces, FramesCarryOverBetweenAnyRankCounts) {
   const auto four = four_owners();
   {
     std::vector<ExodusWriter> writers = piece_writers(dir / "four.e", four);
-    std::vector<std::string> earlier = peridot::exodus_piece_paths((dir / "two.e").string());
+    std::vector<std::string> earlier = peridot::piece_paths((dir / "two.e").string());
     for (ExodusWriter& writer : writers) EXPECT_EQ(writer.copy_frames(earlier, 0.25, 5, 1), 3);
   }
   peridot::join_exodus((dir / "four.e").string(), (dir / "four_joined.e").string());
@@ -204,12 +204,12 @@ TEST(ExodusPieces, FramesCarryOverBetweenAnyRankCounts) {
   {
     std::vector<ExodusWriter> writers = piece_writers(dir / "early.e", four);
     for (ExodusWriter& writer : writers)
-      EXPECT_EQ(writer.copy_frames(peridot::exodus_piece_paths((dir / "two.e").string()), 0.25, 2, 1), 2);
+      EXPECT_EQ(writer.copy_frames(peridot::piece_paths((dir / "two.e").string()), 0.25, 2, 1), 2);
   }
   // 4 pieces → one serial file.
   {
     ExodusWriter writer((dir / "back.e").string(), lattice(), kSets, "peridot: pieces test");
-    EXPECT_EQ(writer.copy_frames(peridot::exodus_piece_paths((dir / "four.e").string()), 0.25, 5, 1), 3);
+    EXPECT_EQ(writer.copy_frames(peridot::piece_paths((dir / "four.e").string()), 0.25, 5, 1), 3);
   }
   EXPECT_EQ(bytes(dir / "back.e"), bytes(dir / "serial.e"));
   // Other points: refused.
@@ -224,7 +224,7 @@ TEST(ExodusPieces, FramesCarryOverBetweenAnyRankCounts) {
 
 TEST(ExodusPieces, IncompleteOrMixedPieceSetsAreRefused) {
   const fs::path dir = scratch_dir();
-  EXPECT_TRUE(peridot::exodus_piece_paths((dir / "none.e").string()).empty());
+  EXPECT_TRUE(peridot::piece_paths((dir / "none.e").string()).empty());
   EXPECT_THROW(peridot::join_exodus((dir / "none.e").string(), (dir / "none.e").string()), std::runtime_error);
   { std::vector<ExodusWriter> writers = piece_writers(dir / "out.e", four_owners()); }
   fs::remove(dir / "out.e.4.1");
@@ -240,7 +240,7 @@ TEST(ExodusPieces, IncompleteOrMixedPieceSetsAreRefused) {
   { std::vector<ExodusWriter> writers = piece_writers(dir / "out.e", four_owners()); }
   write_serial(dir / "x.e");
   fs::copy_file(dir / "x.e", dir / "out.e.1.0");  // an earlier serial run's name… as a 1-piece set
-  EXPECT_THROW(peridot::exodus_piece_paths((dir / "out.e").string()), std::runtime_error);
+  EXPECT_THROW(peridot::piece_paths((dir / "out.e").string()), std::runtime_error);
   EXPECT_EQ(peridot::exodus_result_files((dir / "out.e").string()).size(), 5u);
   fs::remove_all(dir);
 }

@@ -468,7 +468,8 @@ std::vector<SectionSpec> make_sections() {
   s.push_back({"output.checkpoint",
                "checkpoint_<step>.nc files in the output folder, from which `peridot run DECK --restart FILE` continues "
                "bitwise as if never stopped (on any number of ranks and threads); also written when a stop signal "
-               "(SIGINT, SIGTERM, SIGUSR1) ends the run. Give every, wall_time or both",
+               "(SIGINT, SIGTERM, SIGUSR1) ends the run; a distributed run writes one piece per rank, "
+               "checkpoint_<step>.nc.N.r, and --restart takes checkpoint_<step>.nc for the set. Give every, wall_time or both",
                {{.key = "every", .type = VT::integer, .default_yaml = "0", .range = non_negative,
                  .description = "steps between checkpoints (0: not by steps)"},
                 {.key = "wall_time", .type = VT::number, .unit = Unit::time, .default_yaml = "0", .range = non_negative,

@@ -8,6 +8,8 @@
 #include <cstring>
 #include <filesystem>
 
+#include "peridot/core/error.hpp"
+
 namespace peridot {
 
 namespace {
@@ -92,6 +94,7 @@ std::uint64_t checkpoint_checksum(const CheckpointData& data) {
   Fnv1a hash;
   hash.add(data.deck);
   hash.add(data.family_size.data(), data.family_size.size() * sizeof(std::uint32_t));
+  hash.add(data.point_index.data(), data.point_index.size() * sizeof(std::uint32_t));  // none in a whole file
   for (const CheckpointArray& array : data.arrays) {
     hash.add(array.name);
     hash.add(array.layout);
@@ -120,24 +123,46 @@ void write_checkpoint_file(const std::string& path, const CheckpointData& data) 
   const unsigned long long checksum = checkpoint_checksum(data);
   nc.check(nc_put_att_ulonglong(id, NC_GLOBAL, "checksum", NC_UINT64, 1, &checksum), "attribute checksum");
 
-  int points = -1, family = -1;
-  nc.check(nc_def_dim(id, "points", data.family_size.size(), &points), "dimension points");
-  nc.check(nc_def_var(id, "family_size", NC_UINT, 1, &points, &family), "variable family_size");
+  if (!data.point_index.empty() || data.pieces > 1) {
+    PERIDOT_REQUIRE(data.point_index.size() == data.family_size.size(), "a checkpoint piece's point_index does not match its points");
+    nc.check(nc_put_att_int(id, NC_GLOBAL, "pieces", NC_INT, 1, &data.pieces), "attribute pieces");
+    const unsigned long long global = data.global_points;
+    nc.check(nc_put_att_ulonglong(id, NC_GLOBAL, "global_points", NC_UINT64, 1, &global), "attribute global_points");
+  }
+  // A variable of `length` values; netCDF has no empty fixed dimension (length 0 means unlimited), so an empty
+  // one (a piece of a rank without points or bonds) is a scalar marked empty.
+  int points = -1;  // the dimension family_size and point_index share
+  auto define = [&](const std::string& name, nc_type type, std::size_t length) {
+    int dim = -1, var = -1;
+    if (length == 0) {
+      nc.check(nc_def_var(id, name.c_str(), type, 0, nullptr, &var), "variable " + name);
+      const int one = 1;
+      nc.check(nc_put_att_int(id, var, "empty", NC_INT, 1, &one), "attribute empty of " + name);
+      return var;
+    }
+    const bool per_point = name == "family_size" || name == "point_index";
+    if (per_point && points >= 0) dim = points;
+    else nc.check(nc_def_dim(id, per_point ? "points" : (name + ".bytes").c_str(), length, &dim), "dimension of " + name);
+    if (per_point) points = dim;
+    nc.check(nc_def_var(id, name.c_str(), type, 1, &dim, &var), "variable " + name);
+    return var;
+  };
+  const int family = define("family_size", NC_UINT, data.family_size.size());
+  const int index = data.point_index.empty() ? -1 : define("point_index", NC_UINT, data.point_index.size());
   std::vector<int> vars;
   for (const CheckpointArray& array : data.arrays) {
-    if (array.bytes.empty()) nc.fail("array " + array.name + " is empty");
-    int dim = -1, var = -1;
-    nc.check(nc_def_dim(id, (array.name + ".bytes").c_str(), array.bytes.size(), &dim), "dimension of " + array.name);
-    nc.check(nc_def_var(id, array.name.c_str(), NC_UBYTE, 1, &dim, &var), "variable " + array.name);
+    const int var = define(array.name, NC_UBYTE, array.bytes.size());
     text(var, "layout", array.layout);
     const unsigned long long width = array.width;
     nc.check(nc_put_att_ulonglong(id, var, "width", NC_UINT64, 1, &width), "attribute width of " + array.name);
     vars.push_back(var);
   }
   nc.check(nc_enddef(id), "its header");
-  nc.check(nc_put_var_uint(id, family, data.family_size.data()), "variable family_size");
+  if (!data.family_size.empty()) nc.check(nc_put_var_uint(id, family, data.family_size.data()), "variable family_size");
+  if (index >= 0) nc.check(nc_put_var_uint(id, index, data.point_index.data()), "variable point_index");
   for (std::size_t k = 0; k < vars.size(); ++k)
-    nc.check(nc_put_var_uchar(id, vars[k], data.arrays[k].bytes.data()), "variable " + data.arrays[k].name);
+    if (!data.arrays[k].bytes.empty())
+      nc.check(nc_put_var_uchar(id, vars[k], data.arrays[k].bytes.data()), "variable " + data.arrays[k].name);
   nc.close();
   sync_path(tmp, false);
   std::error_code error;
@@ -164,6 +189,11 @@ CheckpointData read_checkpoint_file(const std::string& path) {
   data.time = nc.number_attribute<double>(NC_GLOBAL, "time", nc_get_att_double);
   const unsigned long long checksum = nc.number_attribute<unsigned long long>(NC_GLOBAL, "checksum", nc_get_att_ulonglong);
 
+  if (nc_inq_att(id, NC_GLOBAL, "pieces", nullptr, nullptr) == NC_NOERR) {
+    data.pieces = nc.number_attribute<int>(NC_GLOBAL, "pieces", nc_get_att_int);
+    data.global_points = nc.number_attribute<unsigned long long>(NC_GLOBAL, "global_points", nc_get_att_ulonglong);
+  }
+
   int nvars = 0;
   nc.check(nc_inq_nvars(id, &nvars), "its variables");
   for (int var = 0; var < nvars; ++var) {
@@ -171,14 +201,18 @@ CheckpointData read_checkpoint_file(const std::string& path) {
     int ndims = 0, dim = -1;
     nc_type type = NC_NAT;
     nc.check(nc_inq_var(id, var, name, &type, &ndims, nullptr, nullptr), "variable " + std::to_string(var));
-    if (ndims != 1) nc.fail(std::string("variable ") + name + " is not one-dimensional");
-    nc.check(nc_inq_vardimid(id, var, &dim), std::string("variable ") + name);
     std::size_t length = 0;
-    nc.check(nc_inq_dimlen(id, dim, &length), std::string("variable ") + name);
-    if (std::string(name) == "family_size") {
-      if (type != NC_UINT) nc.fail("family_size is not of unsigned integers");
-      data.family_size.resize(length);
-      nc.check(nc_get_var_uint(id, var, data.family_size.data()), "variable family_size");
+    if (ndims == 1) {
+      nc.check(nc_inq_vardimid(id, var, &dim), std::string("variable ") + name);
+      nc.check(nc_inq_dimlen(id, dim, &length), std::string("variable ") + name);
+    } else if (ndims != 0 || nc_inq_att(id, var, "empty", nullptr, nullptr) != NC_NOERR) {
+      nc.fail(std::string("variable ") + name + " is not one-dimensional");
+    }
+    if (std::string(name) == "family_size" || std::string(name) == "point_index") {
+      if (type != NC_UINT) nc.fail(std::string(name) + " is not of unsigned integers");
+      std::vector<std::uint32_t>& values = std::string(name) == "family_size" ? data.family_size : data.point_index;
+      values.resize(length);
+      if (length > 0) nc.check(nc_get_var_uint(id, var, values.data()), std::string("variable ") + name);
       continue;
     }
     if (type != NC_UBYTE) nc.fail(std::string("variable ") + name + " is not of bytes");
@@ -187,11 +221,13 @@ CheckpointData read_checkpoint_file(const std::string& path) {
     array.layout = nc.text_attribute(var, "layout");
     array.width = nc.number_attribute<unsigned long long>(var, "width", nc_get_att_ulonglong);
     array.bytes.resize(length);
-    nc.check(nc_get_var_uchar(id, var, array.bytes.data()), std::string("variable ") + name);
+    if (length > 0) nc.check(nc_get_var_uchar(id, var, array.bytes.data()), std::string("variable ") + name);
     data.arrays.push_back(std::move(array));
   }
   nc.close();
   if (checkpoint_checksum(data) != checksum) nc.fail("its checksum does not match its contents (the file is corrupt)");
+  if (data.pieces == 1) data.global_points = data.family_size.size();
+  if (data.pieces > 1 && data.point_index.size() != data.family_size.size()) nc.fail("its point_index does not match its points");
   return data;
 }
 

@@ -3,7 +3,10 @@
 // restart checks them against (solvers/checkpoint.hpp fills and reads it):
 //  - attributes: the format version, the code version, the deck fingerprint (text), Δt, the step, the time,
 //    the global point count and a 64-bit checksum (FNV-1a) over the fingerprint and every array's bytes;
-//  - family_size: each point's bond count, in the global point order;
+//  - family_size: each point's bond count, in the global point order (a piece: in the piece's order);
+//  - a distributed run's checkpoint is one file per rank, NAME.N.r (the Exodus pieces' convention,
+//    output/exodus_writer.hpp), each with its owned points only: attributes pieces (N) and global_points, and a
+//    variable point_index, each point's index in the whole problem;
 //  - one NC_UBYTE variable per state array, with its layout ("point", "bond", "global") and its width in
 //    bytes (per point or bond; in all for a global one) as attributes.
 // It is written to NAME.tmp, flushed to disk (fsync), then renamed over NAME and the folder synced, so that a
@@ -29,8 +32,13 @@ struct CheckpointData {
   double time_step = 0;
   std::int64_t step = 0;
   double time = 0;
-  std::vector<std::uint32_t> family_size;  ///< bonds of each point, global order
+  std::vector<std::uint32_t> family_size;  ///< bonds of each point, global order (a piece: the piece's order)
   std::vector<CheckpointArray> arrays;
+  /// A piece (one rank's file of a distributed run): its points' global indices, and how many pieces the
+  /// checkpoint is. A whole checkpoint: point_index empty, pieces 1.
+  std::vector<std::uint32_t> point_index;
+  int pieces = 1;
+  std::uint64_t global_points = 0;  ///< points of the whole problem (a whole file: family_size.size())
 };
 
 /// A checkpoint that cannot be read or fails its checksum; what() says which file and why.
@@ -39,7 +47,8 @@ class CheckpointFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// FNV-1a over the fingerprint, the family sizes and every array (name, layout, width and bytes).
+/// FNV-1a over the fingerprint, the family sizes, a piece's point indices and every array (name, layout, width
+/// and bytes).
 std::uint64_t checkpoint_checksum(const CheckpointData& data);
 
 /// Writes data to path atomically (path.tmp, fsync, rename). Throws std::runtime_error naming the path and

@@ -193,7 +193,7 @@ bool is_piece_suffix(const std::string& suffix) {
   return digits(count) && digits(rank) && std::stoi(rank) < std::stoi(count);
 }
 
-std::vector<std::string> exodus_piece_paths(const std::string& path) {
+std::vector<std::string> piece_paths(const std::string& path) {
   const fs::path whole(path);
   const fs::path dir = whole.has_parent_path() ? whole.parent_path() : fs::path(".");
   const std::string stem = whole.filename().string() + ".";
@@ -242,7 +242,7 @@ std::vector<std::string> exodus_result_files(const std::string& path) {
 }
 
 int join_exodus(const std::string& path, const std::string& out) {
-  const std::vector<std::string> paths = exodus_piece_paths(path);
+  const std::vector<std::string> paths = piece_paths(path);
   if (paths.empty()) throw std::runtime_error(fmt::format("no pieces {}.N.r to join", path));
   std::vector<ExodusInput> pieces;
   for (const std::string& p : paths) pieces.emplace_back(p);

@@ -51,9 +51,9 @@ class ExodusInput {
 /// Whether `suffix` is a piece's "N.r": digits, r of the width of N (zero-padded) and below N.
 bool is_piece_suffix(const std::string& suffix);
 
-/// The pieces of the distributed output `path` (path.N.0 … path.N.N−1), in rank order; empty when there are
-/// none. Throws std::runtime_error when pieces of several rank counts lie there, or one of the N is missing.
-std::vector<std::string> exodus_piece_paths(const std::string& path);
+/// The pieces of the distributed output `path` (path.N.0 … path.N.N−1: Exodus frames, checkpoints), in rank
+/// order; empty when there are none. Throws std::runtime_error when pieces of several rank counts lie there, or one of the N is missing.
+std::vector<std::string> piece_paths(const std::string& path);
 
 /// Every piece set (any N) and the whole file of `path` that exist: what a new run's results replace.
 std::vector<std::string> exodus_result_files(const std::string& path);

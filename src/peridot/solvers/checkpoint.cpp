@@ -1,11 +1,14 @@
 #include "peridot/solvers/checkpoint.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "peridot/deck/deck.hpp"
+#include "peridot/output/exodus_pieces.hpp"
 #include "peridot/version.hpp"
 
 namespace peridot {
@@ -60,72 +63,66 @@ CheckpointData collect_checkpoint(Simulation& sim) {
   const StateArrays arrays = sim.state_arrays();
   const BondList& bonds = sim.bonds();
   const std::size_t owned = sim.num_owned();
-  std::vector<std::uint32_t> index(owned), family(owned);
-  for (std::size_t i = 0; i < owned; ++i) {
-    index[i] = global_of(sim, i);
-    family[i] = static_cast<std::uint32_t>(bonds.offsets[i + 1] - bonds.offsets[i]);
+  CheckpointData data;
+  data.code_version = code_version();
+  data.deck = checkpoint_fingerprint(sim.problem());
+  data.time_step = sim.time_step();
+  data.step = sim.state().step;
+  data.time = sim.state().time;
+  data.global_points = sim.global_point_count();
+  data.family_size.resize(owned);
+  for (std::size_t i = 0; i < owned; ++i) data.family_size[i] = static_cast<std::uint32_t>(bonds.offsets[i + 1] - bonds.offsets[i]);
+  if (!comm.serial()) {  // this rank's piece: its owned points, in its own order, with their global indices
+    data.pieces = comm.size();
+    data.point_index.resize(owned);
+    for (std::size_t i = 0; i < owned; ++i) data.point_index[i] = global_of(sim, i);
   }
   const std::size_t owned_bonds = bonds.offsets[owned];
-  // Rank 0 receives every rank's owned points rank after rank; pieces below arrive in the same order.
-  const std::vector<std::uint32_t> all_index = comm.gather(index), all_family = comm.gather(family);
-
-  CheckpointData data;
-  std::vector<std::uint64_t> bond_offset;  // rank 0: where each global point's family starts
-  if (comm.is_root()) {
-    const std::size_t n = sim.global_point_count();
-    data.code_version = code_version();
-    data.deck = checkpoint_fingerprint(sim.problem());
-    data.time_step = sim.time_step();
-    data.step = sim.state().step;
-    data.time = sim.state().time;
-    data.family_size.assign(n, 0);
-    for (std::size_t k = 0; k < all_index.size(); ++k) data.family_size[all_index[k]] = all_family[k];
-    bond_offset.assign(n + 1, 0);
-    for (std::size_t g = 0; g < n; ++g) bond_offset[g + 1] = bond_offset[g] + data.family_size[g];
-  }
   for (const StateArray& entry : arrays.entries()) {
-    if (entry.layout == ArrayLayout::global) {
-      if (comm.is_root())
-        data.arrays.push_back({entry.name, "global", entry.width, {reinterpret_cast<const unsigned char*>(entry.data),
-                                                                   reinterpret_cast<const unsigned char*>(entry.data) + entry.width}});
+    if (entry.layout == ArrayLayout::global) {  // the same on every rank
+      data.arrays.push_back({entry.name, "global", entry.width, {reinterpret_cast<const unsigned char*>(entry.data),
+                                                                 reinterpret_cast<const unsigned char*>(entry.data) + entry.width}});
       continue;
     }
     if (!comm.any(entry.count > 0)) continue;  // an array this problem does not use
     const bool point = entry.layout == ArrayLayout::point;
-    std::vector<unsigned char> mine((point ? owned : owned_bonds) * entry.width, 0);
+    CheckpointArray array{entry.name, layout_name(entry.layout), entry.width, {}};
+    array.bytes.assign((point ? owned : owned_bonds) * entry.width, 0);
     if (point) {
       for (std::size_t i = entry.first; i < std::min(entry.first + entry.count, owned); ++i)
-        std::memcpy(mine.data() + i * entry.width, entry.data + (i - entry.first) * entry.width, entry.width);
+        std::memcpy(array.bytes.data() + i * entry.width, entry.data + (i - entry.first) * entry.width, entry.width);
     } else {
       PERIDOT_REQUIRE(entry.count >= owned_bonds, "a bond array shorter than this rank's bonds");
-      if (!mine.empty()) std::memcpy(mine.data(), entry.data, mine.size());
-    }
-    const std::vector<unsigned char> all = comm.gather(mine);
-    if (!comm.is_root()) continue;
-    CheckpointArray array{entry.name, layout_name(entry.layout), entry.width, {}};
-    const std::size_t w = entry.width;
-    array.bytes.assign((point ? data.family_size.size() : bond_offset.back()) * w, 0);
-    std::size_t from = 0;
-    for (std::size_t k = 0; k < all_index.size(); ++k) {
-      const std::uint32_t g = all_index[k];
-      const std::size_t length = point ? w : all_family[k] * w;
-      std::memcpy(array.bytes.data() + (point ? g * w : bond_offset[g] * w), all.data() + from, length);
-      from += length;
+      if (!array.bytes.empty()) std::memcpy(array.bytes.data(), entry.data, array.bytes.size());
     }
     data.arrays.push_back(std::move(array));
   }
   return data;
 }
 
-CheckpointData read_checkpoint(const std::string& path, const Simulation& sim) {
+CheckpointSource read_checkpoint(const std::string& path, const Simulation& sim) {
   const Communicator& comm = sim.communicator();
-  CheckpointData data;
+  CheckpointSource source;
   std::string failure;
   try {
-    data = read_checkpoint_file(path);
+    // The checkpoint of a distributed run is one piece per rank: `path` names the set (checkpoint_400.nc for
+    // checkpoint_400.nc.4.*), or any one of its pieces.
+    std::string set = path;
+    const std::size_t last = path.rfind('.'), before = last == std::string::npos || last == 0 ? std::string::npos : path.rfind('.', last - 1);
+    if (std::filesystem::exists(path) && before != std::string::npos && is_piece_suffix(path.substr(before + 1)))
+      set = path.substr(0, before);
+    source.files = std::filesystem::exists(set) ? std::vector<std::string>{set} : piece_paths(set);
+    if (source.files.empty()) source.files.push_back(path);  // reading it says why it cannot be read
+    source.first = read_checkpoint_file(source.files.front());
+    if (source.first.pieces != static_cast<int>(source.files.size()))
+      failure = fmt::format("'{}' is one of {} pieces, and {} lie beside it", source.files.front(), source.first.pieces,
+                            source.files.size());
   } catch (const CheckpointFileError& e) {
     failure = e.what();
+  } catch (const std::runtime_error& e) {
+    failure = fmt::format("cannot read checkpoint '{}': {}", path, e.what());
   }
+  const CheckpointData& data = source.first;
   if (failure.empty() && data.code_version != code_version())
     failure = fmt::format("'{}' was written by peridot {}, and this is peridot {}; restart it with the version that "
                           "wrote it", path, data.code_version, code_version());
@@ -137,62 +134,108 @@ CheckpointData read_checkpoint(const std::string& path, const Simulation& sim) {
                           "is not a whole number of the old steps changes it); give solver.num_steps, or an end time "
                           "on the old steps", path, data.time_step, sim.time_step());
   agree(comm, path, failure);
-  return data;
+  return source;
 }
 
-void restore_checkpoint(Simulation& sim, const CheckpointData& data, const std::string& path) {
+void restore_checkpoint(Simulation& sim, CheckpointSource& source, const std::string& path) {
   const Communicator& comm = sim.communicator();
   const BondList& bonds = sim.bonds();
-  const std::size_t owned = sim.num_owned();
-  const std::size_t n = data.family_size.size();
+  const std::size_t owned = sim.num_owned(), local = sim.discretization().num_points();
   std::string failure;
-  if (n != sim.global_point_count())
-    failure = fmt::format("'{}' holds {} points and this problem has {}", path, n, sim.global_point_count());
-  std::vector<std::uint64_t> bond_offset(n + 1, 0);
-  for (std::size_t g = 0; g < n; ++g) bond_offset[g + 1] = bond_offset[g] + data.family_size[g];
-  for (std::size_t i = 0; i < owned && failure.empty(); ++i)
-    if (data.family_size[global_of(sim, i)] != bonds.offsets[i + 1] - bonds.offsets[i])
-      failure = fmt::format("'{}' has other bonds than this problem (point {})", path, global_of(sim, i));
-  agree(comm, path, failure);
-
+  if (source.first.global_points != sim.global_point_count())
+    failure = fmt::format("'{}' holds {} points and this problem has {}", path, source.first.global_points, sim.global_point_count());
+  // This rank's points (owned and ghosts) by global index; each is looked for in every piece.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> mine(local);
+  for (std::size_t i = 0; i < local; ++i) mine[i] = {global_of(sim, i), static_cast<std::uint32_t>(i)};
+  std::sort(mine.begin(), mine.end());
+  std::vector<std::uint8_t> found(local, 0);
   StateArrays arrays = sim.state_arrays();
-  std::vector<bool> used(data.arrays.size(), false);
-  for (const StateArray& entry : arrays.entries()) {
-    std::size_t k = 0;
-    while (k < data.arrays.size() && data.arrays[k].name != entry.name) ++k;
-    if (k == data.arrays.size()) {
-      if (entry.count > 0) failure = fmt::format("'{}' has no array {}, which this problem needs", path, entry.name);
-      continue;
-    }
-    used[k] = true;
-    const CheckpointArray& array = data.arrays[k];
-    const std::size_t w = entry.width;
-    const std::size_t expected = entry.layout == ArrayLayout::point  ? n * w
-                                 : entry.layout == ArrayLayout::bond ? bond_offset.back() * w
-                                                                     : w;
-    if (array.layout != layout_name(entry.layout) || array.width != w || array.bytes.size() != expected) {
-      failure = fmt::format("'{}' holds array {} in another form ({} of {} bytes, {} in all) than this problem's", path,
-                            entry.name, array.layout, array.width, array.bytes.size());
-      continue;
-    }
-    switch (entry.layout) {
-      case ArrayLayout::global: std::memcpy(entry.data, array.bytes.data(), w); break;
-      case ArrayLayout::point:  // owned points and ghosts alike, from their owners' values
-        for (std::size_t i = entry.first; i < entry.first + entry.count; ++i)
-          std::memcpy(entry.data + (i - entry.first) * w, array.bytes.data() + global_of(sim, i) * w, w);
+  std::vector<std::string> present;  // the arrays the checkpoint holds (those of its first piece)
+  for (const CheckpointArray& array : source.first.arrays) present.push_back(array.name);
+
+  // One piece at a time (a whole checkpoint is one piece of every point): memory for one piece only.
+  const CheckpointData header{source.first.code_version, source.first.deck, source.first.time_step, source.first.step,
+                              source.first.time, {}, {}, {}, source.first.pieces, source.first.global_points};
+  for (std::size_t f = 0; f < source.files.size() && failure.empty(); ++f) {
+    CheckpointData piece;
+    if (f == 0) {
+      piece = std::move(source.first);
+    } else {
+      try {
+        piece = read_checkpoint_file(source.files[f]);
+      } catch (const CheckpointFileError& e) {
+        failure = e.what();
         break;
-      case ArrayLayout::bond:
-        for (std::size_t i = 0; i < owned && entry.count > 0; ++i) {
-          const std::size_t length = (bonds.offsets[i + 1] - bonds.offsets[i]) * w;
-          if (length > 0)
-            std::memcpy(entry.data + bonds.offsets[i] * w, array.bytes.data() + bond_offset[global_of(sim, i)] * w, length);
-        }
+      }
+      if (piece.deck != header.deck || piece.step != header.step || piece.time != header.time ||
+          piece.pieces != header.pieces || piece.global_points != header.global_points) {
+        failure = fmt::format("'{}' is not of the same checkpoint as '{}'", source.files[f], source.files.front());
         break;
+      }
     }
+    const std::size_t m = piece.family_size.size();
+    std::vector<std::uint64_t> bond_offset(m + 1, 0);  // where each of the piece's points' family starts
+    for (std::size_t k = 0; k < m; ++k) bond_offset[k + 1] = bond_offset[k] + piece.family_size[k];
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> moves;  // (point in the piece, point here)
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::uint32_t g = piece.point_index.empty() ? static_cast<std::uint32_t>(k) : piece.point_index[k];
+      const auto it = std::lower_bound(mine.begin(), mine.end(), std::make_pair(g, std::uint32_t{0}));
+      if (it == mine.end() || it->first != g) continue;
+      const std::uint32_t i = it->second;
+      if (found[i]++) {
+        failure = fmt::format("'{}' holds point {} twice", path, g);
+        break;
+      }
+      if (i < owned && piece.family_size[k] != bonds.offsets[i + 1] - bonds.offsets[i]) {
+        failure = fmt::format("'{}' has other bonds than this problem (point {})", path, g);
+        break;
+      }
+      moves.emplace_back(static_cast<std::uint32_t>(k), i);
+    }
+    std::vector<std::string> names;
+    for (const StateArray& entry : arrays.entries()) {
+      if (!failure.empty()) break;
+      const auto array = std::find_if(piece.arrays.begin(), piece.arrays.end(), [&](const CheckpointArray& a) { return a.name == entry.name; });
+      if (array == piece.arrays.end()) {
+        if (entry.count > 0) failure = fmt::format("'{}' has no array {}, which this problem needs", source.files[f], entry.name);
+        continue;
+      }
+      names.push_back(array->name);
+      const std::size_t w = entry.width;
+      const std::size_t expected = entry.layout == ArrayLayout::point  ? m * w
+                                   : entry.layout == ArrayLayout::bond ? bond_offset.back() * w
+                                                                       : w;
+      if (array->layout != layout_name(entry.layout) || array->width != w || array->bytes.size() != expected) {
+        failure = fmt::format("'{}' holds array {} in another form ({} of {} bytes, {} in all) than this problem's",
+                              source.files[f], entry.name, array->layout, array->width, array->bytes.size());
+        continue;
+      }
+      switch (entry.layout) {
+        case ArrayLayout::global:
+          if (f == 0) std::memcpy(entry.data, array->bytes.data(), w);
+          break;
+        case ArrayLayout::point:  // owned points and ghosts alike, from their owners' values
+          for (const auto& [k, i] : moves)
+            if (i >= entry.first && i < entry.first + entry.count)
+              std::memcpy(entry.data + (i - entry.first) * w, array->bytes.data() + k * w, w);
+          break;
+        case ArrayLayout::bond:
+          for (const auto& [k, i] : moves) {
+            const std::size_t length = (bonds.offsets[i + 1] - bonds.offsets[i]) * w;
+            if (i < owned && entry.count > 0 && length > 0)
+              std::memcpy(entry.data + bonds.offsets[i] * w, array->bytes.data() + bond_offset[k] * w, length);
+          }
+          break;
+      }
+    }
+    for (const CheckpointArray& array : piece.arrays)
+      if (failure.empty() && std::find(names.begin(), names.end(), array.name) == names.end())
+        failure = fmt::format("'{}' holds array {}, which this problem does not have", source.files[f], array.name);
   }
-  for (std::size_t k = 0; k < used.size() && failure.empty(); ++k)
-    if (!used[k]) failure = fmt::format("'{}' holds array {}, which this problem does not have", path, data.arrays[k].name);
+  if (failure.empty() && std::find(found.begin(), found.end(), std::uint8_t{0}) != found.end())
+    failure = fmt::format("'{}' lacks points of this problem", path);
   agree(comm, path, failure);
+  source.first = header;  // what the caller still reads (the step, the time); the arrays are in sim now
   sim.restored();
 }
 

@@ -387,7 +387,7 @@ std::vector<std::string> earlier_exodus_results(const fs::path& dir, const std::
   }
   for (const fs::path& file : with_suffix(".before-restart")) earlier.push_back(file.string());  // a restart stopped early
   if (!earlier.empty()) return earlier;
-  earlier = exodus_piece_paths((dir / name).string());
+  earlier = piece_paths((dir / name).string());
   if (earlier.empty() && fs::exists(dir / name)) earlier.push_back((dir / name).string());
   return earlier;
 }
@@ -477,11 +477,11 @@ struct Run::Impl {
 void Run::Impl::open_outputs() {
   const Problem& problem = sim.problem();
   if (restart) {  // checked and restored before anything is written
-    const CheckpointData checkpoint = read_checkpoint(options.restart, sim);
-    if (checkpoint.step > sim.total_steps())
+    CheckpointSource checkpoint = read_checkpoint(options.restart, sim);
+    if (checkpoint.first.step > sim.total_steps())
       throw InputError(SourcePos{options.restart, 0, 0},
                        fmt::format("restart: '{}' is at step {}, after this deck's end (step {}); give a later end time "
-                                   "or more steps", options.restart, checkpoint.step, sim.total_steps()));
+                                   "or more steps", options.restart, checkpoint.first.step, sim.total_steps()));
     sim.initialize();
     restore_checkpoint(sim, checkpoint, options.restart);
     checkpoint_step = frame_step = row_step = sim.state().step;
@@ -622,17 +622,23 @@ void Run::Impl::write_outputs(bool force) {
 
 void Run::Impl::write_checkpoint() {
   const OutputSpec& output = sim.problem().output;
-  const CheckpointData data = collect_checkpoint(sim);
+  const CheckpointData data = collect_checkpoint(sim);  // distributed: this rank's piece
   const fs::path path = dir / fmt::format("checkpoint_{}.nc", sim.state().step);
-  on_root([&] {
-    write_checkpoint_file(path.string(), data);
+  // Serial: one file; distributed: each rank its piece checkpoint_<step>.nc.N.r, so nothing is gathered.
+  auto mine = [&](const fs::path& set) {
+    return comm.serial() ? set : fs::path(ExodusWriter::piece_path(set.string(), comm.rank(), comm.size()));
+  };
+  on_every_rank([&] {
+    write_checkpoint_file(mine(path).string(), data);
     checkpoints.push_back(path);
     while (checkpoints.size() > static_cast<std::size_t>(output.checkpoint_keep)) {
-      fs::remove(checkpoints.front());
+      fs::remove(mine(checkpoints.front()));
       checkpoints.erase(checkpoints.begin());
     }
   });
-  log.line(fmt::format("checkpoint {} at step {}, t = {:.6g} s", path.filename().string(), sim.state().step,
+  log.line(fmt::format("checkpoint {}{} at step {}, t = {:.6g} s", path.filename().string(),
+                       comm.serial() ? "" : fmt::format(" ({} pieces: {}.{}.*)", comm.size(), path.filename().string(), comm.size()),
+                       sim.state().step,
                        sim.state().time));
   last_checkpoint = std::chrono::steady_clock::now();
   checkpoint_step = sim.state().step;
