@@ -173,6 +173,8 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
         for (std::uint32_t c = 0; c < counts[r]; ++c) owner_[everyone[k++]] = static_cast<int>(r);
     }
   }
+  // Distributed, the whole problem's points stay only for short-range contact, which reads them every step.
+  if (!problem_.contact) global_disc_ = Discretization{};
 
   any_dilatation_ = model_.any_dilatation();
   any_start_step_ = model_.any_start_step();

@@ -246,8 +246,8 @@ class Simulation {
   Halo halo_;
   double collective_seconds_ = 0;  ///< in agree_on_failure
   Halo bond_halo_;  ///< partner-bond slots (BondList::reverse), for models that read their partner's bond
-  /// Distributed only: the whole problem's points on every rank where it was discretized whole or where a
-  /// feature reads every point (Simulation()).
+  /// Distributed only: the whole problem's points on every rank, during the set-up where it was discretized
+  /// whole or where a feature reads every point, and after it for short-range contact only (Simulation()).
   Discretization global_disc_;
   /// Per rigid wall with contact: symmetry, after prepare_outputs(…, true): its mirror bonds' force density on
   /// each owned point (3 per point; empty for other walls).
