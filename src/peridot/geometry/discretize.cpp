@@ -38,14 +38,20 @@ struct RawPoint {
 
 /// Where lattice sites are made: every site, or (distributed) only those whose index along `axis` is in
 /// [first, last).
-struct Window {
-  int axis = 0;
-  long first = std::numeric_limits<long>::min(), last = std::numeric_limits<long>::max();
-  bool holds(long i, long j, long k) const {
-    const long along = axis == 0 ? i : axis == 1 ? j : k;
-    return along >= first && along < last;
+/// Every site: the window of discretize().
+SiteBox everywhere() {
+  SiteBox box;
+  for (int d = 0; d < 3; ++d) box.lo[d] = std::numeric_limits<long>::min(), box.hi[d] = std::numeric_limits<long>::max();
+  return box;
+}
+
+/// [lo, hi] (inclusive) clipped to the window's half-open range along d.
+void clip(const SiteBox& window, long lo[3], long hi[3]) {
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::max(lo[d], window.lo[d]);
+    hi[d] = std::min(hi[d], window.hi[d] == std::numeric_limits<long>::max() ? hi[d] : window.hi[d] - 1);
   }
-};
+}
 
 // Interleaves the low 21 bits of three cell indices: points close in space get close codes.
 std::uint64_t morton_code(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
@@ -93,7 +99,7 @@ bool claimed_by_earlier_body(const Problem& problem, std::int32_t block, Vec3 p)
   return false;
 }
 
-void fill_shape(const Problem& problem, std::int32_t block, const LatticeExtent& extent, const Window& window,
+void fill_shape(const Problem& problem, std::int32_t block, const LatticeExtent& extent, const SiteBox& window,
                 std::vector<RawPoint>& out) {
   const BodySpec& body = problem.bodies[block];
   const int dim = problem.dimension;
@@ -101,11 +107,11 @@ void fill_shape(const Problem& problem, std::int32_t block, const LatticeExtent&
   const Vec3 origin = problem.lattice_origin;
   long lo[3], hi[3];
   site_range(problem, body, 0, lo, hi);
+  clip(window, lo, hi);  // the same sites in the same order, those outside the window skipped
   const double volume = std::pow(dx, dim) * problem.cross_section();
   for (long k = lo[2]; k <= hi[2]; ++k)
     for (long j = lo[1]; j <= hi[1]; ++j)
       for (long i = lo[0]; i <= hi[0]; ++i) {
-        if (!window.holds(i, j, k)) continue;
         Vec3 p{origin.x + (i + 0.5) * dx, dim >= 2 ? origin.y + (j + 0.5) * dx : 0.0, dim == 3 ? origin.z + (k + 0.5) * dx : 0.0};
         if (!body.shape->contains(p, dim) || claimed_by_earlier_body(problem, block, p)) continue;
         const std::uint64_t site = extent.site(i, j, k);
@@ -117,7 +123,7 @@ void fill_shape(const Problem& problem, std::int32_t block, const LatticeExtent&
 /// The volume-constraint layer of a shape body: the lattice sites outside every body's shape within
 /// body.volume_constraint of one of this body's own sites, with its material; their indices in `out` go to
 /// `layer`.
-void fill_layer(const Problem& problem, std::int32_t block, const LatticeExtent& extent, const Window& window,
+void fill_layer(const Problem& problem, std::int32_t block, const LatticeExtent& extent, const SiteBox& window,
                 std::vector<RawPoint>& out, std::vector<std::uint32_t>& layer) {
   const BodySpec& body = problem.bodies[block];
   const int dim = problem.dimension;
@@ -140,11 +146,11 @@ void fill_layer(const Problem& problem, std::int32_t block, const LatticeExtent&
   };
   long lo[3], hi[3];
   site_range(problem, body, reach, lo, hi);
+  clip(window, lo, hi);
   const double volume = std::pow(dx, dim) * problem.cross_section();
   for (long k = lo[2]; k <= hi[2]; ++k)
     for (long j = lo[1]; j <= hi[1]; ++j)
       for (long i = lo[0]; i <= hi[0]; ++i) {
-        if (!window.holds(i, j, k)) continue;
         Vec3 p = site(i, j, k);
         if (in_any_body(p)) continue;
         const bool near = std::any_of(offsets.begin(), offsets.end(), [&](const std::array<long, 3>& o) {
@@ -282,11 +288,66 @@ double cell_side(double volume, const Problem& problem) {
   return problem.dimension == 3 ? std::cbrt(cell) : problem.dimension == 2 ? std::sqrt(cell) : cell;
 }
 
-LatticePoints discretize_window(const Problem& problem, int axis, long first, long last) {
+SiteBox bisected_site_box(const Problem& problem, int rank, int ranks) {
+  const LatticeExtent extent = lattice_extent(problem);
+  // Each body's estimated sites: its bounding box (with its layer), evenly filled.
+  std::vector<SiteBox> bodies;
+  for (const BodySpec& body : problem.bodies) {
+    if (!body.shape) continue;
+    long lo[3], hi[3];
+    site_range(problem, body, body.volume_constraint, lo, hi);
+    SiteBox b;
+    for (int d = 0; d < 3; ++d) b.lo[d] = lo[d], b.hi[d] = hi[d] + 1;
+    bodies.push_back(b);
+  }
+  auto weight = [&](const SiteBox& box) {
+    double w = 0;
+    for (const SiteBox& b : bodies) {
+      double overlap = 1;
+      for (int d = 0; d < 3; ++d) overlap *= static_cast<double>(std::max(0L, std::min(box.hi[d], b.hi[d]) - std::max(box.lo[d], b.lo[d])));
+      w += overlap;
+    }
+    return w;
+  };
+  SiteBox box;
+  for (int d = 0; d < 3; ++d) box.lo[d] = extent.lo[d], box.hi[d] = extent.hi[d] + 1;
+  int first = 0, count = ranks;  // the ranks this box is for
+  while (count > 1) {
+    const int left = count / 2;
+    int axis = 0;
+    for (int d = 1; d < problem.dimension; ++d)
+      if (box.hi[d] - box.lo[d] > box.hi[axis] - box.lo[axis]) axis = d;
+    // The first cut whose lower part holds at least its share (binary search: the weight grows with the cut).
+    const double total = weight(box), share = total * left / count;
+    long lo = box.lo[axis], hi = box.hi[axis];
+    if (total > 0) {
+      while (lo < hi) {
+        const long cut = lo + (hi - lo) / 2;
+        SiteBox lower = box;
+        lower.hi[axis] = cut;
+        if (weight(lower) >= share) hi = cut;
+        else lo = cut + 1;
+      }
+    } else {
+      lo = box.lo[axis] + (box.hi[axis] - box.lo[axis]) * left / count;
+    }
+    const long cut = lo;
+    if (rank < first + left) {
+      box.hi[axis] = cut;
+      count = left;
+    } else {
+      box.lo[axis] = cut;
+      first += left;
+      count -= left;
+    }
+  }
+  return box;
+}
+
+LatticePoints discretize_window(const Problem& problem, const SiteBox& window) {
   PERIDOT_REQUIRE(generated_by_window(problem), "discretize_window: a body is not a shape on the lattice");
   check_size(problem);
   const LatticeExtent extent = lattice_extent(problem);
-  const Window window{axis, first, last};
   std::vector<RawPoint> raw;
   for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
     fill_shape(problem, static_cast<std::int32_t>(b), extent, window, raw);
@@ -316,19 +377,19 @@ Discretization discretize(const Problem& problem) {
   std::vector<Diagnostic> errors;
   check_size(problem);
   const LatticeExtent extent = lattice_extent(problem);
-  const Window everywhere;
+  const SiteBox all = everywhere();
   std::map<std::string, Mesh> meshes;
   std::vector<Discretization::MeshSet> mesh_sets;
   for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
     const BodySpec& body = problem.bodies[b];
     const std::size_t before = raw.size();
     if (body.shape) {
-      fill_shape(problem, static_cast<std::int32_t>(b), extent, everywhere, raw);
+      fill_shape(problem, static_cast<std::int32_t>(b), extent, all, raw);
       if (body.volume_constraint > 0 && raw.size() > before) {
         Discretization::MeshSet& layer = mesh_sets.emplace_back();
         layer.name = body.name + "_constraint";
         layer.block = static_cast<std::int32_t>(b);
-        fill_layer(problem, static_cast<std::int32_t>(b), extent, everywhere, raw, layer.input_ids);
+        fill_layer(problem, static_cast<std::int32_t>(b), extent, all, raw, layer.input_ids);
         if (layer.input_ids.empty())
           errors.push_back({body.pos, "bodies." + body.name +
                                           ".volume_constraint: the layer holds no lattice site (is it thinner than the "

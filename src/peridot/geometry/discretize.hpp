@@ -23,7 +23,7 @@ std::vector<BlockRange> block_ranges(const Discretization& disc, std::size_t cou
 
 // -- distributed generation (parallel/domain.hpp) ------------------------------------------------------------
 // A run whose bodies are all shapes on the lattice (jittered or not) can be generated piece by piece: each rank
-// makes the sites of its slab of lattice planes only. What the whole-problem order needs of a point is then
+// makes the sites of its box of the lattice only (bisected_site_box). What the whole-problem order needs of a point is then
 // derived from its site alone, so that every rank count gives the serial order and ids:
 //   generation order (the input id's order): block, then shape points before the body's volume-constraint
 //       layer, then the site's linear index (k, j, i raster: the order fill_shape visits them in);
@@ -50,10 +50,23 @@ struct LatticePoints {
   std::vector<std::uint64_t> site;   ///< each point's LatticeExtent::site
   std::vector<std::uint8_t> layer;   ///< 1 for a volume-constraint layer's point
 };
-/// The points of the sites whose index along `axis` is in [first, last), in generation order: the same points
-/// (same bits) discretize() makes there. Checks the problem's size as discretize() does; an empty body is the
-/// caller's to find (it needs every window).
-LatticePoints discretize_window(const Problem& problem, int axis, long first, long last);
+/// A box of lattice sites, half-open along each axis: lo[d] ≤ index < hi[d].
+struct SiteBox {
+  long lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  bool holds(long i, long j, long k) const {
+    return i >= lo[0] && i < hi[0] && j >= lo[1] && j < hi[1] && k >= lo[2] && k < hi[2];
+  }
+};
+
+/// Rank `rank`'s box of a recursive coordinate bisection of the lattice extent into `ranks` boxes that tile it:
+/// each box is cut across its longest axis where the bodies' estimated site counts (each body's sites taken
+/// as spread evenly over its bounding box, layer included) split in proportion to the ranks on either side.
+SiteBox bisected_site_box(const Problem& problem, int rank, int ranks);
+
+/// The points of the sites inside `window`, in generation order: the same points (same bits) discretize()
+/// makes there. Checks the problem's size as discretize() does; an empty body is the caller's to find (it
+/// needs every window).
+LatticePoints discretize_window(const Problem& problem, const SiteBox& window);
 
 /// The storage-order key of a point: the Morton code of its cell on a grid of `spacing` from `lo`.
 std::uint64_t morton_key(Vec3 x, Vec3 lo, double spacing, int dimension);

@@ -126,60 +126,59 @@ LocalDomain decompose_generated(const Communicator& comm, const Problem& problem
                                 PartitionMethod method) {
   const int dim = problem.dimension, ranks = comm.size();
   const double dx = problem.spacing;
-  // 1. This rank's slab of planes along the longest axis, and the points one reach beyond it.
+  // 1. This rank's box of the lattice (a recursive bisection weighted by the bodies' estimated site counts),
+  //    and the points one reach beyond it on every side.
   const LatticeExtent extent = lattice_extent(problem);
-  int axis = 0;
-  for (int d = 1; d < dim; ++d)
-    if (extent.count(d) > extent.count(axis)) axis = d;
-  const long planes = extent.count(axis);
-  const long first = extent.lo[axis] + planes * comm.rank() / ranks, last = extent.lo[axis] + planes * (comm.rank() + 1) / ranks;
+  const SiteBox box = bisected_site_box(problem, comm.rank(), ranks);
   const double max_horizon = *std::max_element(options.horizon_of_block.begin(), options.horizon_of_block.end());
   // Every bond the neighbour search admits (horizon, partial-volume ring, its round-off allowance) is shorter.
   const double reach = (max_horizon + (options.bond_beyond_horizon ? options.partial_volume_radius : 0.0)) * (1 + 1e-6);
   const long reach_planes = static_cast<long>(std::ceil(reach / dx)) + 1;
-  LatticePoints made = discretize_window(problem, axis, first - reach_planes, last + reach_planes);
+  SiteBox window = box;
+  for (int d = 0; d < dim; ++d) window.lo[d] -= reach_planes, window.hi[d] += reach_planes;
+  LatticePoints made = discretize_window(problem, window);
   const std::size_t made_count = made.disc.num_points();
-  auto along = [&](std::size_t k) {  // the site's index along the axis
+  auto in_box = [&](std::size_t k) {  // the site is in this rank's own box
     std::uint64_t site = made.site[k];
     long index[3];
     for (int d = 0; d < 3; ++d) {
       index[d] = static_cast<long>(site % static_cast<std::uint64_t>(extent.count(d))) + extent.lo[d];
       site /= static_cast<std::uint64_t>(extent.count(d));
     }
-    return index[axis];
+    return box.holds(index[0], index[1], index[2]);
   };
-  // Slab points first, then the others (kept in generation order within each).
+  // The box's points first, then the others (kept in generation order within each).
   std::vector<std::uint32_t> order;
   for (std::size_t k = 0; k < made_count; ++k)
-    if (along(k) >= first && along(k) < last) order.push_back(static_cast<std::uint32_t>(k));
+    if (in_box(k)) order.push_back(static_cast<std::uint32_t>(k));
   const std::size_t mine = order.size();
   for (std::size_t k = 0; k < made_count; ++k)
-    if (along(k) < first || along(k) >= last) order.push_back(static_cast<std::uint32_t>(k));
-  Discretization slab;
-  slab.dimension = dim;
-  slab.block_names = made.disc.block_names;
-  slab.x.resize(made_count);
-  slab.volume.resize(made_count);
-  slab.block.resize(made_count);
+    if (!in_box(k)) order.push_back(static_cast<std::uint32_t>(k));
+  Discretization generated;
+  generated.dimension = dim;
+  generated.block_names = made.disc.block_names;
+  generated.x.resize(made_count);
+  generated.volume.resize(made_count);
+  generated.block.resize(made_count);
   std::vector<std::uint64_t> site(mine);
   std::vector<std::uint8_t> layer(mine);
   for (std::size_t k = 0; k < made_count; ++k) {
     const std::uint32_t from = order[k];
-    slab.x.set(k, made.disc.x.get(from));
-    slab.volume[k] = made.disc.volume[from];
-    slab.block[k] = made.disc.block[from];
+    generated.x.set(k, made.disc.x.get(from));
+    generated.volume[k] = made.disc.volume[from];
+    generated.block[k] = made.disc.block[from];
     if (k < mine) site[k] = made.site[from], layer[k] = made.layer[from];
   }
   made = LatticePoints{};
-  const std::vector<std::uint64_t> bond_count = count_bonds(slab, options, 0, mine);
+  const std::vector<std::uint64_t> bond_count = count_bonds(generated, options, 0, mine);
 
-  // Empty bodies and layers, from every slab's count.
+  // Empty bodies and layers, from every box's count.
   const std::size_t blocks = problem.bodies.size();
   std::vector<Diagnostic> errors;
   for (std::size_t b = 0; b < blocks; ++b) {
     std::uint64_t points = 0, layer_points = 0;
     for (std::size_t k = 0; k < mine; ++k)
-      if (slab.block[k] == static_cast<std::int32_t>(b)) (layer[k] ? layer_points : points) += 1;
+      if (generated.block[k] == static_cast<std::int32_t>(b)) (layer[k] ? layer_points : points) += 1;
     points = comm.sum(points);
     layer_points = comm.sum(layer_points);
     const BodySpec& body = problem.bodies[b];
@@ -191,36 +190,36 @@ LocalDomain decompose_generated(const Communicator& comm, const Problem& problem
   }
   if (!errors.empty()) throw InputError(errors);
 
-  // 2. Storage order and generation order over all slabs.
+  // 2. Storage order and generation order over all boxes.
   const std::uint64_t total = comm.sum(static_cast<std::uint64_t>(mine));
   PERIDOT_REQUIRE(total <= UINT32_MAX, "more than 2^32 points: global indices need 64 bits");
   Vec3 lo{1e300, 1e300, 1e300};
   double min_spacing = 1e300;
   for (std::size_t k = 0; k < mine; ++k) {
-    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], slab.x(k, d));
-    min_spacing = std::min(min_spacing, cell_side(slab.volume[k], problem));
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], generated.x(k, d));
+    min_spacing = std::min(min_spacing, cell_side(generated.volume[k], problem));
   }
   for (int d = 0; d < 3; ++d) lo[d] = comm.min(lo[d]);
   min_spacing = comm.min(min_spacing);
   std::vector<OrderKey> key(mine);
   for (std::size_t k = 0; k < mine; ++k) {
-    const auto block = static_cast<std::uint64_t>(slab.block[k]);
-    key[k] = {block, morton_key(slab.x.get(k), lo, min_spacing, dim), std::uint64_t{layer[k]} << 62 | site[k]};
+    const auto block = static_cast<std::uint64_t>(generated.block[k]);
+    key[k] = {block, morton_key(generated.x.get(k), lo, min_spacing, dim), std::uint64_t{layer[k]} << 62 | site[k]};
   }
   const std::vector<std::uint64_t> global = global_ranks(comm, key);
-  for (std::size_t k = 0; k < mine; ++k) key[k] = {static_cast<std::uint64_t>(slab.block[k]), layer[k], site[k]};
+  for (std::size_t k = 0; k < mine; ++k) key[k] = {static_cast<std::uint64_t>(generated.block[k]), layer[k], site[k]};
   const std::vector<std::uint64_t> input = global_ranks(comm, key);
   key = {};
 
-  // 3. Owners; every slab point goes to its owner.
-  std::vector<std::uint32_t> slab_global(global.begin(), global.end());
-  Discretization slab_points;  // the slab's own points, for Zoltan
-  slab_points.dimension = dim;
-  slab_points.x.resize(mine);
-  slab_points.volume.assign(slab.volume.begin(), slab.volume.begin() + static_cast<std::ptrdiff_t>(mine));
-  for (std::size_t k = 0; k < mine; ++k) slab_points.x.set(k, slab.x.get(k));
-  const std::vector<int> owner = partition_local_points(comm, slab_points, slab_global, bond_count, method);
-  slab_points = Discretization{};
+  // 3. Owners; every point of the box goes to its owner.
+  std::vector<std::uint32_t> box_global(global.begin(), global.end());
+  Discretization box_points;  // the box's own points, for Zoltan
+  box_points.dimension = dim;
+  box_points.x.resize(mine);
+  box_points.volume.assign(generated.volume.begin(), generated.volume.begin() + static_cast<std::ptrdiff_t>(mine));
+  for (std::size_t k = 0; k < mine; ++k) box_points.x.set(k, generated.x.get(k));
+  const std::vector<int> owner = partition_local_points(comm, box_points, box_global, bond_count, method);
+  box_points = Discretization{};
   std::vector<std::uint32_t> by_owner(mine);
   std::iota(by_owner.begin(), by_owner.end(), 0u);
   std::stable_sort(by_owner.begin(), by_owner.end(), [&](std::uint32_t a, std::uint32_t b) { return owner[a] < owner[b]; });
@@ -228,9 +227,9 @@ LocalDomain decompose_generated(const Communicator& comm, const Problem& problem
   PointPacket out;
   for (std::uint32_t k : by_owner) {
     ++count[static_cast<std::size_t>(owner[k])];
-    out.add(slab_global[k], static_cast<std::uint32_t>(input[k]), slab.block[k], layer[k], slab.x.get(k), slab.volume[k]);
+    out.add(box_global[k], static_cast<std::uint32_t>(input[k]), generated.block[k], layer[k], generated.x.get(k), generated.volume[k]);
   }
-  slab = Discretization{};
+  generated = Discretization{};
   PointPacket owned = send_points(comm, out, count, source);
   out = PointPacket{};
 

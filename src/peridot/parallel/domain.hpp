@@ -35,11 +35,12 @@ LocalDomain decompose(const Communicator& comm, const Discretization& global, co
 /// The same domain (the same owned points, families and ghosts, in the same order, with the serial global
 /// indices and input ids) without any rank holding the whole problem, for the problems
 /// geometry/discretize.hpp can generate by window:
-///  1. rank r makes the lattice planes of its slab along the longest axis, plus one reach (δ + r) of planes
-///     on each side, and counts the bonds of its slab's points;
+///  1. rank r makes the sites of its box of the lattice (geometry/discretize.hpp, bisected_site_box: a
+///     recursive bisection weighted by the bodies' estimated site counts), plus one reach (δ + r) of planes
+///     on every side, and counts the bonds of its box's points;
 ///  2. the serial storage order and generation order are found from the points' sites (global_order.hpp):
 ///     the global index and the input id;
-///  3. Zoltan partitions the slabs' points by bond count; each point moves once, to its owner;
+///  3. Zoltan partitions the boxes' points by bond count; each point moves once, to its owner;
 ///  4. each owner's bounding box widened by the reach is sent to every rank, which sends back its points in
 ///     that box: the candidates for ghosts, from which the owned points' families are built.
 /// The volume-constraint layers are the discretization's mesh sets (<body>_constraint), by input id, over
