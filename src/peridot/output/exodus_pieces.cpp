@@ -1,10 +1,8 @@
 #include "peridot/output/exodus_pieces.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <map>
-#include <memory>
 #include <stdexcept>
 #include <utility>
 

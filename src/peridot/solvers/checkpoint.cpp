@@ -150,8 +150,6 @@ void restore_checkpoint(Simulation& sim, CheckpointSource& source, const std::st
   std::sort(mine.begin(), mine.end());
   std::vector<std::uint8_t> found(local, 0);
   StateArrays arrays = sim.state_arrays();
-  std::vector<std::string> present;  // the arrays the checkpoint holds (those of its first piece)
-  for (const CheckpointArray& array : source.first.arrays) present.push_back(array.name);
 
   // One piece at a time (a whole checkpoint is one piece of every point): memory for one piece only.
   const CheckpointData header{source.first.code_version, source.first.deck, source.first.time_step, source.first.step,
