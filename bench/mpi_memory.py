@@ -9,7 +9,8 @@ the peak resident memory of every rank (Linux VmHWM, read at the end of the run)
 slowest rank (points, bonds and partition: Simulation's constructor) and the decomposition `peridot check`
 prints (owned points and ghosts per rank). n = 200 is the 8 000 000-point block of issue 25; it needs about
 6.5 GB on one rank. With --frames the deck also writes an Exodus frame at every step (3 frames: steps 0, 1, 2;
-distributed, one piece per rank) and the table adds the time to write them and their size.
+distributed, one piece per rank) and the table adds the time to write them and their size. With --contact the
+deck turns on short-range contact (`contact: {}`: a pair-list build over the points near each rank's own).
 """
 import argparse
 import os
@@ -26,7 +27,7 @@ bodies:
   block: {{material: steel, shape: {{box: {{min: [0, 0, 0], max: [{side}, {side}, {side}]}}}}}}
 initial_conditions:
   - {{velocity: {{x: "1e-3 * x"}}}}
-solver: {{num_steps: 2}}
+{contact}solver: {{num_steps: 2}}
 output: {{directory: out, progress: false{frames}}}
 """
 
@@ -43,6 +44,7 @@ def main():
     p.add_argument("--n", type=int, default=200)
     p.add_argument("--ranks", default="1,2,4")
     p.add_argument("--frames", action="store_true", help="write an Exodus frame at every step")
+    p.add_argument("--contact", action="store_true", help="short-range contact on")
     p.add_argument("--out", default=None)
     a = p.parse_args()
     peridot = os.path.abspath(a.peridot)
@@ -50,7 +52,8 @@ def main():
     os.makedirs(work, exist_ok=True)
     deck = os.path.join(work, "block.yaml")
     with open(deck, "w") as f:
-        f.write(DECK.format(side=a.n * 1e-3, frames=", exodus: {every: 1, file: block.e}" if a.frames else ""))
+        f.write(DECK.format(side=a.n * 1e-3, frames=", exodus: {every: 1, file: block.e}" if a.frames else "",
+                           contact="contact: {}\n" if a.contact else ""))
     print(f"{a.n}³ = {a.n ** 3} points, LPS, δ = 3.015 Δx; work in {work}")
     print("| ranks | owned points per rank | ghosts (largest) | bonds | set-up (s) | run (s) | Exodus (MB) | peak resident per rank (MiB) | largest | sum | largest / one rank |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")

@@ -185,6 +185,20 @@ def main():
           f"set-up error seen by some ranks only: exit {r.returncode}, {len(errors)} error line(s) "
           f"({errors[0] if errors else r.stderr.strip()[:200]})")
 
+    # A misplaced symmetry wall: the check reads only the points near the plane, gathered in the global order,
+    # so every rank count names the same point as a serial run.
+    text = open(os.path.join(a.source, "tests", "regression", "decks", "mpi_symmetry_wall.yaml")).read()
+    for shift, kind in (("0.0007", "behind the plane"), ("0.0003", "not half its spacing")):
+        bad = os.path.join(a.work, f"bad_symmetry{shift}.yaml")
+        open(bad, "w").write(text.replace("point: [0, 0, 0], normal: [0, 0, 1]", f"point: [0, 0, {shift}], normal: [0, 0, 1]"))
+        lines = []
+        for ranks in (None, 3):
+            out = os.path.join(a.work, f"bad_symmetry{shift}_{ranks}")
+            r = peridot(["run", "-q", "-o", out, bad], ranks=ranks)
+            lines.append((r.returncode, [line for line in r.stderr.splitlines() if ": error: " in line], os.path.exists(out)))
+        check(lines[0] == lines[1] and lines[0][0] == 2 and len(lines[0][1]) == 1 and kind in lines[0][1][0] and not lines[0][2],
+              f"symmetry wall {kind}: 3 ranks report what serial does ({lines[1][1][:1]})")
+
     # A numerical failure: every rank stops with the failing rank's message, exit 3, outputs readable.
     text = open(os.path.join(a.source, "tests", "regression", "decks", "exodus_small.yaml")).read()
     text = text.replace("  num_steps: 120", "  num_steps: 400\n  time_step: 2e-6").replace("    damage: {critical_stretch: 0.002}\n", "")

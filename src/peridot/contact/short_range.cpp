@@ -23,10 +23,34 @@ std::uint64_t cell_key(std::int64_t ix, std::int64_t iy, std::int64_t iz) {
 
 }  // namespace
 
-ShortRangeContact::ShortRangeContact(const ContactSpec& spec, const Problem& problem, const Discretization& all,
-                                     const std::vector<MaterialParams>& params, bool damage)
+void ContactCandidates::add(std::uint32_t g, int rank, const double* deformed, const double* reference, double v,
+                            std::int32_t b) {
+  global.push_back(g);
+  owner.push_back(rank);
+  y.insert(y.end(), deformed, deformed + 3);
+  x.insert(x.end(), reference, reference + 3);
+  volume.push_back(v);
+  block.push_back(b);
+}
+
+namespace {
+
+double radius_of(double volume, double section, int dimension) {
+  const double cell = volume / section;  // Δx^n
+  return 0.5 * (dimension == 3 ? std::cbrt(cell) : dimension == 2 ? std::sqrt(cell) : cell);
+}
+
+}  // namespace
+
+double ShortRangeContact::node_radius(double volume, const Problem& problem) {
+  return radius_of(volume, problem.cross_section(), problem.dimension);
+}
+
+ShortRangeContact::ShortRangeContact(const ContactSpec& spec, const Problem& problem,
+                                     const std::vector<MaterialParams>& params, bool damage, double largest_radius)
     : blocks_(params.size()),
-      all_(&all),
+      section_(problem.cross_section()),
+      dimension_(problem.dimension),
       distance_factor_(spec.distance_factor),
       reference_fraction_(spec.reference_fraction),
       damage_(damage) {
@@ -50,17 +74,8 @@ ShortRangeContact::ShortRangeContact(const ContactSpec& spec, const Problem& pro
       friction_[a * blocks_ + b] = friction_[b * blocks_ + a] = f.coefficient;
     }
   }
-  const double section = problem.cross_section();
-  const int dimension = problem.dimension;
-  double largest = 0;
-  radius_.resize(all.num_points());
-  for (std::size_t i = 0; i < all.num_points(); ++i) {
-    const double cell = all.volume[i] / section;  // Δx^n
-    radius_[i] = 0.5 * (dimension == 3 ? std::cbrt(cell) : dimension == 2 ? std::sqrt(cell) : cell);
-    largest = std::max(largest, radius_[i]);
-  }
-  skin_ = spec.skin * 2 * largest;
-  cutoff_ = distance_factor_ * 2 * largest + skin_;
+  skin_ = spec.skin * 2 * largest_radius;
+  cutoff_ = distance_factor_ * 2 * largest_radius + skin_;
 }
 
 bool ShortRangeContact::place(const VectorField& x, const VectorField& u, std::size_t owned, double* y) const {
@@ -81,16 +96,32 @@ bool ShortRangeContact::place(const VectorField& x, const VectorField& u, std::s
   return moved || !built;
 }
 
-void ShortRangeContact::build(const std::vector<double>& y, const std::vector<std::uint32_t>& owned_global,
-                              const std::vector<int>& owner, const BondList& bonds,
+void ShortRangeContact::build(const ContactCandidates& candidates, std::size_t owned, const BondList& bonds,
                               const std::vector<std::uint32_t>& local_global, const VectorField& u) {
   const double start = omp_get_wtime();
-  const Discretization& all = *all_;
-  const std::size_t n = all.num_points();
-  owned_ = owned_global.size();
+  const std::size_t n = candidates.size();
+  const std::vector<double>& y = candidates.y;
+  owned_ = owned;
   ++builds_;
   u_built_.resize(owned_);
   std::copy(u.data(), u.data() + 3 * owned_, u_built_.data());
+  std::vector<double> radius(n);
+  for (std::size_t i = 0; i < n; ++i) radius[i] = radius_of(candidates.volume[i], section_, dimension_);
+
+  // The candidate of each local point (owned, then ghosts), for the bonded-pair test: the owned points are
+  // the first candidates; a ghost is one when its owner sent it (by global index, the others in increasing
+  // order after the owned ones).
+  const bool identity = local_global.empty();
+  const std::size_t local = identity ? owned_ : local_global.size();
+  std::vector<std::uint32_t> candidate_of(local, no_bond);
+  for (std::size_t i = 0; i < owned_; ++i) candidate_of[i] = static_cast<std::uint32_t>(i);
+  {
+    const auto first = candidates.global.begin() + static_cast<std::ptrdiff_t>(owned_), last = candidates.global.end();
+    for (std::size_t i = owned_; i < local; ++i) {
+      const auto it = std::lower_bound(first, last, local_global[i]);
+      if (it != last && *it == local_global[i]) candidate_of[i] = static_cast<std::uint32_t>(it - candidates.global.begin());
+    }
+  }
 
   // Cells of size ≥ the largest d_ij + s over the points' bounding box, filled by a counting sort: a point's
   // candidates are in the 27 cells around it. Where the box holds far more cells than points (fragments flown
@@ -99,6 +130,7 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], y[3 * i + d]), hi[d] = std::max(hi[d], y[3 * i + d]);
+  if (n == 0) lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;  // a rank without points lists nothing
   std::int64_t span[3];
   for (int d = 0; d < 3; ++d) span[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo[d]) / h)) + 3;  // a cell of margin each side
   auto cell_of = [&](std::size_t i, int d) {
@@ -139,84 +171,85 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = order[k];
     for (std::size_t d = 0; d < 3; ++d) sorted_y[3 * k + d] = y[3 * i + d];
-    sorted_radius[k] = radius_[i];
+    sorted_radius[k] = radius[i];
   }
 
-  // Which global points are owned here, and at which slot.
-  std::vector<std::uint32_t> slot_of(n, no_bond);
-  for (std::size_t i = 0; i < owned_; ++i) slot_of[owned_global[i]] = static_cast<std::uint32_t>(i);
-
   // Each thread lists the pairs of one contiguous range of owned points (static schedule) in its own buffer,
-  // in point order, partners by global index; the buffers joined in thread order are the lists in point order.
+  // in point order; the buffers joined in thread order are the lists in point order.
   struct Pair {
-    std::uint32_t global, bond;
+    std::uint32_t global, candidate, bond;
     double distance, coefficient, mu;
   };
   const int threads = omp_get_max_threads();
   std::vector<std::vector<Pair>> found(static_cast<std::size_t>(threads));
   std::vector<std::uint64_t> count(owned_ + 1, 0);
-  const bool identity = local_global.empty();
+  const std::vector<double>& x = candidates.x;
 #pragma omp parallel
   {
     std::vector<Pair>& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
-    // The bond i → j of the point at hand, by j's global index (set from i's family, cleared after it).
+    // The bond i → j of the point at hand, by j's candidate index (set from i's family, cleared after it).
     std::vector<std::uint32_t> bond_to(n, no_bond);
+    auto for_each_bond = [&](std::uint64_t begin, std::uint64_t end, auto&& f) {
+      for (std::uint64_t b = begin; b < end; ++b) {
+        const std::uint32_t c = candidate_of[bonds.neighbors[b]];
+        if (c != no_bond) f(c, b);
+      }
+    };
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < owned_; ++i) {
-      const std::uint32_t gi = owned_global[i];
-      const Vec3 yi{y[3 * gi], y[3 * gi + 1], y[3 * gi + 2]};
-      const Vec3 xi = all.x.get(gi);
-      const std::size_t bi = static_cast<std::size_t>(all.block[gi]);
-      const std::int64_t cx = cell_of(gi, 0), cy = cell_of(gi, 1), cz = cell_of(gi, 2);
+      const Vec3 yi{y[3 * i], y[3 * i + 1], y[3 * i + 2]};
+      const Vec3 xi{x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+      const std::size_t bi = static_cast<std::size_t>(candidates.block[i]);
+      const std::int64_t cx = cell_of(i, 0), cy = cell_of(i, 1), cz = cell_of(i, 2);
       const std::uint64_t begin = bonds.offsets[i], end = bonds.offsets[i + 1];
       const std::size_t before = mine.size();
-      if (damage_)
-        for (std::uint64_t b = begin; b < end; ++b)
-          bond_to[identity ? bonds.neighbors[b] : local_global[bonds.neighbors[b]]] = static_cast<std::uint32_t>(b);
-      else
-        for (std::uint64_t b = begin; b < end; ++b) bond_to[identity ? bonds.neighbors[b] : local_global[bonds.neighbors[b]]] = 0;
+      for_each_bond(begin, end, [&](std::uint32_t c, std::uint64_t b) { bond_to[c] = damage_ ? static_cast<std::uint32_t>(b) : 0; });
       for (std::int64_t ox = -1; ox <= 1; ++ox)
         for (std::int64_t oy = -1; oy <= 1; ++oy)
           for (std::int64_t oz = -1; oz <= 1; ++oz) {
             const auto [first, last] = cell_range(key_of(cx + ox, cy + oy, cz + oz));
             for (std::size_t it = first; it < last; ++it) {
               const double dx = sorted_y[3 * it] - yi.x, dy = sorted_y[3 * it + 1] - yi.y, dz = sorted_y[3 * it + 2] - yi.z;
-              const double reach = distance_factor_ * (radius_[gi] + sorted_radius[it]) + skin_;
+              const double reach = distance_factor_ * (radius[i] + sorted_radius[it]) + skin_;
               const double r2 = dx * dx + dy * dy + dz * dz;
               if (r2 >= reach * reach) continue;
-              const std::uint32_t gj = order[it];
-              if (gj == gi) continue;
-              const double d = std::min(reference_fraction_ * norm(all.x.get(gj) - xi), distance_factor_ * (radius_[gi] + radius_[gj]));
+              const std::uint32_t j = order[it];
+              if (j == i) continue;
+              const Vec3 xj{x[3 * j], x[3 * j + 1], x[3 * j + 2]};
+              const double d = std::min(reference_fraction_ * norm(xj - xi), distance_factor_ * (radius[i] + radius[j]));
               if (r2 >= (d + skin_) * (d + skin_)) continue;
-              const std::uint32_t bond = bond_to[gj];
+              const std::uint32_t bond = bond_to[j];
               if (!damage_ && bond != no_bond) continue;  // a bond that cannot break: never in contact
-              const std::size_t bj = static_cast<std::size_t>(all.block[gj]);
-              mine.push_back({gj, bond, d, stiffness_[bi * blocks_ + bj] * all.volume[gj],
+              const std::size_t bj = static_cast<std::size_t>(candidates.block[j]);
+              mine.push_back({candidates.global[j], j, bond, d, stiffness_[bi * blocks_ + bj] * candidates.volume[j],
                               friction_.empty() ? 0.0 : friction_[bi * blocks_ + bj]});
             }
           }
-      for (std::uint64_t b = begin; b < end; ++b) bond_to[identity ? bonds.neighbors[b] : local_global[bonds.neighbors[b]]] = no_bond;
+      for_each_bond(begin, end, [&](std::uint32_t c, std::uint64_t) { bond_to[c] = no_bond; });
       std::sort(mine.begin() + static_cast<std::ptrdiff_t>(before), mine.end(),
                 [](const Pair& p, const Pair& q) { return p.global < q.global; });
       count[i + 1] = mine.size() - before;
     }
   }
 
-  // Remote partners: grouped by owner rank, increasing global index within a rank.
-  remote_.clear();
-  const int ranks = owner.empty() ? 1 : 1 + *std::max_element(owner.begin(), owner.end());
-  remote_count_.assign(static_cast<std::size_t>(ranks), 0);
+  // Remote partners: grouped by owner rank, increasing global index within a rank; each candidate's slot.
+  std::vector<std::uint32_t> slot_of(n, no_bond);
+  for (std::size_t i = 0; i < owned_; ++i) slot_of[i] = static_cast<std::uint32_t>(i);
+  std::vector<std::uint32_t> partners;  // candidate indices
   for (const std::vector<Pair>& pairs : found)
     for (const Pair& p : pairs)
-      if (slot_of[p.global] == no_bond) remote_.push_back(p.global);
-  std::sort(remote_.begin(), remote_.end());
-  remote_.erase(std::unique(remote_.begin(), remote_.end()), remote_.end());
-  std::sort(remote_.begin(), remote_.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return owner[a] != owner[b] ? owner[a] < owner[b] : a < b;
-  });
-  for (std::size_t k = 0; k < remote_.size(); ++k) {
-    slot_of[remote_[k]] = static_cast<std::uint32_t>(owned_ + k);
-    ++remote_count_[static_cast<std::size_t>(owner[remote_[k]])];
+      if (p.candidate >= owned_) partners.push_back(p.candidate);
+  std::sort(partners.begin(), partners.end());
+  partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+  std::stable_sort(partners.begin(), partners.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return candidates.owner[a] < candidates.owner[b]; });
+  const int ranks = n == 0 ? 1 : 1 + *std::max_element(candidates.owner.begin(), candidates.owner.end());
+  remote_.resize(partners.size());
+  remote_count_.assign(static_cast<std::size_t>(ranks), 0);
+  for (std::size_t k = 0; k < partners.size(); ++k) {
+    slot_of[partners[k]] = static_cast<std::uint32_t>(owned_ + k);
+    remote_[k] = candidates.global[partners[k]];
+    ++remote_count_[static_cast<std::size_t>(candidates.owner[partners[k]])];
   }
 
   offsets_.assign(owned_ + 1, 0);
@@ -231,7 +264,7 @@ void ShortRangeContact::build(const std::vector<double>& y, const std::vector<st
   std::size_t k = 0;
   for (const std::vector<Pair>& pairs : found)
     for (const Pair& p : pairs) {
-      partner_[k] = slot_of[p.global];
+      partner_[k] = slot_of[p.candidate];
       bond_[k] = p.bond;
       distance_[k] = p.distance;
       coefficient_[k] = p.coefficient;

@@ -19,11 +19,13 @@
 // pair outside the list can be within d_ij). A pair that is bonded keeps its bond's index and is skipped
 // while the bond is intact (a byte read); without damage anywhere, bonded pairs are left out at the build.
 //
-// Indices: the owned points' pairs are built over the whole problem's points (every rank holds them), and
-// their partners are slots: the owned points (0 … owned − 1), then the remote partners (remote(), grouped by
-// owner rank) whose positions the caller copies in from their owners. Each point's pairs are in increasing
-// global index, and a point's force is gathered from its own pairs only, so every owned force is the same
-// bits for any thread and rank count.
+// Indices: the owned points' pairs are built over candidates (ContactCandidates): the owned points, then, on a
+// distributed run, the other ranks' points whose deformed positions lie within the search reach of this
+// rank's own (parallel/contact_candidates.hpp); no rank reads the whole problem. The partners are slots: the
+// owned points (0 … owned − 1), then the remote partners (remote(), grouped by owner rank) whose positions
+// the caller copies in from their owners each step. Each point's pairs are in increasing global index, and a
+// point's force is gathered from its own pairs only, so every owned force is the same bits for any thread
+// and rank count.
 #include <cstdint>
 #include <vector>
 
@@ -33,22 +35,40 @@
 
 namespace peridot {
 
+/// The points one rank's contact search looks at: its owned points first, in local order, then other ranks'
+/// points near them in increasing global index.
+struct ContactCandidates {
+  std::vector<std::uint32_t> global;  ///< index in the whole problem
+  std::vector<int> owner;             ///< rank that owns the point
+  std::vector<double> y, x;           ///< deformed and reference positions, 3 per point (m)
+  std::vector<double> volume;         ///< m³
+  std::vector<std::int32_t> block;
+  std::size_t size() const { return global.size(); }
+  /// Appends one point.
+  void add(std::uint32_t g, int rank, const double* deformed, const double* reference, double v, std::int32_t b);
+};
+
 class ShortRangeContact {
  public:
-  /// `all`: the whole problem's points in the global order; `params`: the blocks'; `damage`: whether any
-  /// bond may break.
-  ShortRangeContact(const ContactSpec& spec, const Problem& problem, const Discretization& all,
-                    const std::vector<MaterialParams>& params, bool damage);
+  /// `params`: the blocks'; `damage`: whether any bond may break; `largest_radius`: the largest node radius
+  /// of the whole problem (node_radius of its points), which sets the search cells and the skin.
+  ShortRangeContact(const ContactSpec& spec, const Problem& problem, const std::vector<MaterialParams>& params,
+                    bool damage, double largest_radius);
+  /// Half the spacing of a point of this volume: ½ V^(1/3) in 3D, ½ √(V/h) in 2D, ½ V/A in 1D.
+  static double node_radius(double volume, const Problem& problem);
+  /// The farthest two points can be apart and still be listed as a pair (d_ij + s at most): a rank needs the
+  /// other ranks' points within this distance of its own.
+  double search_reach() const { return cutoff_; }
 
   /// Writes the owned points' positions y = x + u into y (3 per point) and returns whether one of them has
   /// moved more than s/2 since the last build (or none was built): one pass over the points.
   bool place(const VectorField& x, const VectorField& u, std::size_t owned, double* y) const;
-  /// Builds the owned points' pair lists from y, the current positions of all points (global order, 3 per
-  /// point). `owned_global[i]`: global index of owned point i; `owner`: rank of each global point (empty:
-  /// one rank); `bonds`: the local bond list, neighbours local indices whose global ones are `local_global`
-  /// (empty: the same); `u`: the owned points' displacement now (the reference for needs_build).
-  void build(const std::vector<double>& y, const std::vector<std::uint32_t>& owned_global, const std::vector<int>& owner,
-             const BondList& bonds, const std::vector<std::uint32_t>& local_global, const VectorField& u);
+  /// Builds the pair lists of the `owned` first candidates over all candidates. `bonds`: the local bond list,
+  /// neighbours local indices (owned points, then ghosts) whose global indices are `local_global` (empty: the
+  /// local index is the global one, one rank); `u`: the owned points' displacement now (the reference for
+  /// place's "moved" test).
+  void build(const ContactCandidates& candidates, std::size_t owned, const BondList& bonds,
+             const std::vector<std::uint32_t>& local_global, const VectorField& u);
   /// Global indices of the remote partners, grouped by owner rank (ascending), increasing within a rank;
   /// their positions go to slots owned + k. remote_count()[r]: how many rank r owns.
   const std::vector<std::uint32_t>& remote() const { return remote_; }
@@ -78,8 +98,8 @@ class ShortRangeContact {
   std::size_t blocks_ = 0;
   std::vector<double> stiffness_;   ///< k per pair of blocks (blocks_ × blocks_)
   std::vector<double> friction_;    ///< μ per pair of blocks (empty: no friction)
-  std::vector<double> radius_;      ///< node radius of every point (global order)
-  const Discretization* all_ = nullptr;
+  double section_ = 1;              ///< the problem's cross-section (m² in 1D, thickness in 2D, 1 in 3D)
+  int dimension_ = 3;
   double distance_factor_ = 1.35, reference_fraction_ = 0.9, skin_ = 0, cutoff_ = 0;
   bool damage_ = false;
   std::size_t owned_ = 0, builds_ = 0;

@@ -2,9 +2,10 @@
 // Which rank owns which point: a geometric partition by Zoltan (recursive coordinate bisection by
 // default; recursive inertial bisection or a Hilbert space-filling curve on request) of the reference
 // positions, each point weighted by its bond count so that the ranks get equal bond work. Computed once,
-// from the reference configuration. Every rank holds the whole discretization; rank r hands Zoltan the
-// points of its slice [r·N/P, (r+1)·N/P) with their weights, and every rank gets back the owner of every
-// point. For a given deck and rank count the result is the same on every run (Zoltan's RCB is
+// from the reference configuration. Where every rank holds the whole discretization (point-file and mesh
+// bodies), rank r hands Zoltan the points of its slice [r·N/P, (r+1)·N/P) with their weights, and every rank
+// gets back the owner of every point; where each rank made its own points (partition_local_points), it hands
+// Zoltan those. For a given deck and rank count the result is the same on every run (Zoltan's RCB is
 // deterministic), and a run's trajectory never depends on it.
 #include <cstdint>
 #include <vector>

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <sstream>
 
@@ -11,6 +12,7 @@
 
 #include "peridot/core/exact_sum.hpp"
 #include "peridot/damage/fragments.hpp"
+#include "peridot/parallel/contact_candidates.hpp"
 #include "peridot/parallel/domain.hpp"
 #include "peridot/state/point_fields.hpp"
 
@@ -91,6 +93,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   // Distributed, the problems whose points are made on the lattice are made piece by piece: no rank holds
   // them all (parallel/domain.hpp, decompose_generated); other problems are discretized whole on every rank.
   const bool generated = generated_per_rank_ = !comm_.serial() && generated_by_window(problem_);
+  Discretization whole;  // distributed: the whole problem's points (or the part a check reads), during the set-up only
   if (comm_.serial()) {
     disc_ = discretize(problem_);
     node_sets_ = build_node_sets(problem_, disc_);
@@ -122,17 +125,19 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     if (!empty.empty()) throw InputError(empty);
     mark_no_fail(disc_, sets);
     model_.no_fail = std::move(no_fail);
-    // What the features that still read every point (short-range contact, symmetry walls) need of the whole
-    // problem, on every rank; nothing without them.
-    const bool everywhere = problem_.contact.has_value() ||
-                            std::any_of(problem_.rigid_walls.begin(), problem_.rigid_walls.end(),
-                                        [](const RigidWallSpec& w) { return w.contact == WallContactKind::symmetry; });
-    if (everywhere) global_disc_ = assemble_discretization();
+    // The symmetry walls' check reads the points within a horizon of their planes (or behind them), in the
+    // global order: those are gathered, on every rank, and no others.
+    whole = assemble_discretization([&](std::size_t i) {
+      const double horizon = model_.params[static_cast<std::size_t>(disc_.block[i])].horizon;
+      return std::any_of(problem_.rigid_walls.begin(), problem_.rigid_walls.end(), [&](const RigidWallSpec& w) {
+        return w.contact == WallContactKind::symmetry && dot(disc_.x.get(i) - w.point, w.normal) < horizon;
+      });
+    });
   } else {
-    global_disc_ = discretize(problem_);
-    global_points_ = global_disc_.num_points();
-    const std::vector<NodeSet> global_node_sets = build_node_sets(problem_, global_disc_);
-    LocalDomain domain = decompose(comm_, global_disc_, neighborhood, problem_.partition);
+    whole = discretize(problem_);
+    global_points_ = whole.num_points();
+    const std::vector<NodeSet> global_node_sets = build_node_sets(problem_, whole);
+    LocalDomain domain = decompose(comm_, whole, neighborhood, problem_.partition);
     if (needs_partner_bonds) bond_halo_ = build_partner_bonds(comm_, domain);
     disc_ = std::move(domain.disc);
     bonds_ = std::move(domain.bonds);
@@ -140,7 +145,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     global_index_ = std::move(domain.global_index);
     halo_ = std::move(domain.halo);
     node_sets_ = local_node_sets(global_node_sets, global_index_, owned_);
-    mark_no_fail(global_disc_, global_node_sets);
+    mark_no_fail(whole, global_node_sets);
     if (!no_fail.empty())  // ghosts too: a bond to a protected ghost never breaks
       for (std::uint32_t g : global_index_) model_.no_fail.push_back(no_fail[g]);
   }
@@ -151,7 +156,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
 
   std::optional<InputError> refused;
   try {
-    check_symmetry_walls(problem_, comm_.serial() ? disc_ : global_disc_, model_.params);
+    check_symmetry_walls(problem_, comm_.serial() ? disc_ : whole, model_.params);
     correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_, &halo_, comm_);
     bodies_ = std::make_unique<RigidBodies>(problem_, model_);
     if (problem_.temperature) temperature_ = std::make_unique<TemperatureField>(*problem_.temperature, disc_);
@@ -160,21 +165,12 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   }
   agree_on_input_error(refused);
   if (problem_.contact) {
-    const Discretization& all = comm_.serial() ? disc_ : global_disc_;
-    short_range_ = std::make_unique<ShortRangeContact>(*problem_.contact, problem_, all, model_.params, model_.any_damage());
+    double largest = 0;  // node radius, over the whole problem
+    for (std::size_t i = 0; i < owned_; ++i) largest = std::max(largest, ShortRangeContact::node_radius(disc_.volume[i], problem_));
+    short_range_ = std::make_unique<ShortRangeContact>(*problem_.contact, problem_, model_.params, model_.any_damage(),
+                                                       comm_.max(largest));
     if (model_.any_damage()) contact_opened_.assign(bonds_.num_bonds(), 0.0);
-    if (!comm_.serial()) {
-      const std::vector<std::uint32_t> counts = comm_.all_gather(std::vector<std::uint32_t>{static_cast<std::uint32_t>(owned_)});
-      const std::vector<std::uint32_t> everyone = comm_.all_gather(
-          std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() + static_cast<std::ptrdiff_t>(owned_)));
-      owner_.assign(all.num_points(), 0);
-      std::size_t k = 0;
-      for (std::size_t r = 0; r < counts.size(); ++r)
-        for (std::uint32_t c = 0; c < counts[r]; ++c) owner_[everyone[k++]] = static_cast<int>(r);
-    }
   }
-  // Distributed, the whole problem's points stay only for short-range contact, which reads them every step.
-  if (!problem_.contact) global_disc_ = Discretization{};
 
   any_dilatation_ = model_.any_dilatation();
   any_start_step_ = model_.any_start_step();
@@ -230,28 +226,33 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
 
 Simulation::~Simulation() = default;
 
-Discretization Simulation::assemble_discretization() const {
+Discretization Simulation::assemble_discretization(const std::function<bool(std::size_t)>& keep) const {
+  std::vector<std::uint32_t> index, input;
+  std::vector<double> x, volume;
+  std::vector<std::int32_t> block;
+  for (std::size_t i = 0; i < owned_; ++i) {
+    if (!keep(i)) continue;
+    index.push_back(global_index_[i]);
+    x.insert(x.end(), disc_.x.data() + 3 * i, disc_.x.data() + 3 * i + 3);
+    volume.push_back(disc_.volume[i]);
+    block.push_back(disc_.block[i]);
+    input.push_back(disc_.input_id[i]);
+  }
+  index = comm_.all_gather(index), x = comm_.all_gather(x), volume = comm_.all_gather(volume);
+  block = comm_.all_gather(block), input = comm_.all_gather(input);
+  std::vector<std::size_t> order(index.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return index[a] < index[b]; });
   Discretization all;
   all.dimension = disc_.dimension;
   all.block_names = disc_.block_names;
-  const auto owned = static_cast<std::ptrdiff_t>(owned_);
-  auto collect = [&](const auto& local) { return comm_.all_gather(local); };
-  const std::vector<std::uint32_t> index = collect(std::vector<std::uint32_t>(global_index_.begin(), global_index_.begin() + owned));
-  const std::vector<double> x = collect(std::vector<double>(disc_.x.data(), disc_.x.data() + 3 * owned_));
-  const std::vector<double> volume = collect(std::vector<double>(disc_.volume.begin(), disc_.volume.begin() + owned));
-  const std::vector<std::int32_t> block = collect(std::vector<std::int32_t>(disc_.block.begin(), disc_.block.begin() + owned));
-  const std::vector<std::uint32_t> input = collect(std::vector<std::uint32_t>(disc_.input_id.begin(), disc_.input_id.begin() + owned));
-  const std::size_t n = index.size();
-  all.x.resize(n);
-  all.volume.resize(n);
-  all.block.resize(n);
-  all.input_id.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t g = index[k];
-    all.x.set(g, Vec3{x[3 * k], x[3 * k + 1], x[3 * k + 2]});
-    all.volume[g] = volume[k];
-    all.block[g] = block[k];
-    all.input_id[g] = input[k];
+  all.x.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t t = order[k];
+    all.x.set(k, Vec3{x[3 * t], x[3 * t + 1], x[3 * t + 2]});
+    all.volume.push_back(volume[t]);
+    all.block.push_back(block[t]);
+    all.input_id.push_back(input[t]);
   }
   return all;
 }
@@ -342,21 +343,13 @@ void Simulation::compute_contact() {
   if (!comm_.serial()) build = comm_.any(build);
   const bool friction = short_range_->has_friction();
   if (build) {
-    // The positions of every point (every rank holds the whole discretization), for the search.
-    const Discretization& all = comm_.serial() ? disc_ : global_disc_;
-    std::vector<double> y(3 * all.num_points());
-    std::vector<double> mine(contact_y_.begin(), contact_y_.begin() + static_cast<std::ptrdiff_t>(3 * owned_));
-    std::vector<std::uint32_t> owned_global(owned_);
-    for (std::size_t i = 0; i < owned_; ++i) owned_global[i] = comm_.serial() ? static_cast<std::uint32_t>(i) : global_index_[i];
-    if (comm_.serial()) {
-      y = std::move(mine);
-    } else {
-      const std::vector<double> gathered = comm_.all_gather(mine);
-      const std::vector<std::uint32_t> index = comm_.all_gather(owned_global);
-      for (std::size_t k = 0; k < index.size(); ++k)
-        for (std::size_t d = 0; d < 3; ++d) y[3 * index[k] + d] = gathered[3 * k + d];
-    }
-    short_range_->build(y, owned_global, owner_, bonds_, global_index_, state_.u);
+    // The owned points, and on a distributed run the other ranks' points near them, for the search.
+    ContactCandidates candidates;
+    for (std::size_t i = 0; i < owned_; ++i)
+      candidates.add(comm_.serial() ? static_cast<std::uint32_t>(i) : global_index_[i], comm_.rank(), contact_y_.data() + 3 * i,
+                     disc_.x.data() + 3 * i, disc_.volume[i], disc_.block[i]);
+    candidates = gather_contact_candidates(comm_, std::move(candidates), short_range_->search_reach());
+    short_range_->build(candidates, owned_, bonds_, global_index_, state_.u);
     if (!comm_.serial()) {
       std::vector<int> count = short_range_->remote_count();
       count.resize(static_cast<std::size_t>(comm_.size()), 0);

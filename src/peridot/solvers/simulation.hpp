@@ -18,6 +18,7 @@
 // bits for any rank count; each rank writes its owned points' piece of an Exodus frame (exodus_piece), nothing
 // is gathered. External work is kept per point, to be summed the same way.
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -224,9 +225,9 @@ class Simulation {
  private:
   /// Labels state_.fragment, once per step (collective).
   void fragments();
-  /// The whole problem's points (x, V, block, input id) in the global order, on every rank, from every
-  /// rank's owned points. Collective.
-  Discretization assemble_discretization() const;
+  /// The owned points of every rank for which keep(local index) holds (x, V, block, input id), in the
+  /// global order, on every rank. Collective.
+  Discretization assemble_discretization(const std::function<bool(std::size_t)>& keep) const;
   /// Throws, on every rank, the first failing rank's InputError (none: no error anywhere). Collective.
   void agree_on_input_error(const std::optional<InputError>& error) const;
   /// Copies the owners' per-bond history into the partner-bond slots (after every commit).
@@ -246,9 +247,6 @@ class Simulation {
   Halo halo_;
   double collective_seconds_ = 0;  ///< in agree_on_failure
   Halo bond_halo_;  ///< partner-bond slots (BondList::reverse), for models that read their partner's bond
-  /// Distributed only: the whole problem's points on every rank, during the set-up where it was discretized
-  /// whole or where a feature reads every point, and after it for short-range contact only (Simulation()).
-  Discretization global_disc_;
   /// Per rigid wall with contact: symmetry, after prepare_outputs(…, true): its mirror bonds' force density on
   /// each owned point (3 per point; empty for other walls).
   std::vector<std::vector<double>> symmetry_force_density_;
@@ -260,12 +258,10 @@ class Simulation {
   std::unique_ptr<RigidBodies> bodies_;
   std::unique_ptr<ShortRangeContact> short_range_;
   /// Short-range contact: positions (and with friction velocities) of its slots, the owned points then
-  /// the remote partners, which contact_halo_ copies from their owners; distributed, every point's owner
-  /// rank and the owned points' global indices, rank after rank.
+  /// the remote partners, which contact_halo_ copies from their owners.
   std::vector<double> contact_y_, contact_v_;
   std::vector<double> contact_opened_;  ///< per bond: its pair's contact distance since it broke (ShortRangeContact)
   Halo contact_halo_;
-  std::vector<int> owner_;
   std::vector<double> contact_energy_;  ///< J per point, for the totals
   std::uint64_t broken_bonds_ = 0, all_bonds_ = 0;  ///< directed, all ranks, at the last prepare_outputs(…, true)
   std::unique_ptr<EnergyFailure> energy_failure_;  ///< null unless a block breaks bonds by their work
