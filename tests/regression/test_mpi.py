@@ -40,7 +40,9 @@ DECKS = [  # (deck, what it covers)
      "short-range contact with fragments and friction, a free rigid ball and a fixed rigid box"),
     ("tests/regression/decks/mpi_generated.yaml",
      "points made per rank: overlapping bodies, jitter, a volume-constraint layer, an id-file node set"),
-    ("tests/regression/decks/mpi_mesh_body.yaml", "a point-file body beside a lattice body: every rank reads the whole problem"),
+    ("tests/regression/decks/mpi_mesh_body.yaml", "a point-file body beside a lattice body: each rank keeps a share of the file"),
+    ("tests/regression/decks/mpi_mesh_sets.yaml",
+     "an Abaqus mesh body beside a lattice body, its node set pulling, bonds breaking: the mesh read in shares"),
 ]
 RANKS = [1, 2, 3, 4]
 

@@ -1,17 +1,19 @@
 // The boxes of the lattice that ranks make their points in (geometry/discretize.hpp): the recursive bisection
 // tiles the lattice extent, balances the bodies' sites, and the windows together make exactly the points of
-// discretize(), bit for bit.
+// discretize(), bit for bit. The ranks' shares of point files and meshes (read_file_bodies) likewise.
 #include "peridot/geometry/discretize.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <tuple>
 #include <vector>
 
 #include "peridot/deck/deck.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace {
 
@@ -35,7 +37,6 @@ solver: {num_steps: 1}
 
 TEST(LatticeWindows, BisectedBoxesTileTheExtentAndTogetherMakeDiscretizesPoints) {
   const Problem problem = l_shape();
-  ASSERT_TRUE(peridot::generated_by_window(problem));
   const peridot::Discretization whole = peridot::discretize(problem);
   // Every point of the whole problem by (block, x bits).
   std::map<std::tuple<int, double, double, double>, int> expected;
@@ -82,5 +83,69 @@ TEST(LatticeWindows, BisectedBoxesTileTheExtentAndTogetherMakeDiscretizesPoints)
     std::printf("%d ranks: largest box %.2f, largest slab %.2f of the mean\n", ranks, largest / mean, largest_slab / mean);
     EXPECT_LE(static_cast<double>(largest), 1.7 * mean) << ranks << " ranks";
     if (ranks > 1) EXPECT_LT(largest, largest_slab) << ranks << " ranks";
+  }
+}
+
+TEST(LatticeWindows, FileSharesTogetherAreDiscretizesPointsWithTheirPlaces) {
+  // A point-file body (block filter), a lattice body and a mesh body with a node set, in 2D.
+  const std::filesystem::path dir = peridot::testing::scratch_dir();
+  {
+    std::ofstream points(dir / "points.txt");
+    for (int k = 0; k < 23; ++k) points << 0.0005 + 0.001 * (k % 5) << ' ' << 0.0005 + 0.001 * (k / 5) << " 2e-9 " << (k % 4 == 3 ? 2 : 1) << '\n';
+    std::ofstream mesh(dir / "plate.inp");
+    mesh << "*NODE\n";
+    int id = 1;
+    for (int j = 0; j <= 3; ++j)
+      for (int i = 0; i <= 4; ++i) mesh << id++ << ", " << 10 + i << ", " << j << ", 0\n";
+    mesh << "*ELEMENT, TYPE=CPS4\n";
+    id = 1;
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const int a = 1 + i + 5 * j;
+        mesh << id++ << ", " << a << ", " << a + 1 << ", " << a + 6 << ", " << a + 5 << "\n";
+      }
+    mesh << "*NSET, NSET=left\n1, 6, 11, 16\n";
+  }
+  const Problem problem = peridot::parse_deck(R"(
+discretization: {dimension: 2, plane: stress, thickness: 2 mm, spacing: 1 mm, horizon_factor: 3.015}
+materials:
+  steel: {model: lps, density: 7800, youngs_modulus: 200 GPa, poisson_ratio: 0.3}
+bodies:
+  read: {material: steel, points_file: points.txt, block: 1}
+  made: {material: steel, shape: {box: {min: [0, 6 mm], max: [8 mm, 9 mm]}}}
+  meshed: {material: steel, mesh: {file: plate.inp, scale: 1e-3}}
+solver: {num_steps: 1}
+)", (dir / "deck.yaml").string(), dir.string());
+  const peridot::Discretization whole = peridot::discretize(problem);
+  // Each file body's points by place in the body (input id − the body's first input id).
+  std::vector<std::uint32_t> first(problem.bodies.size(), UINT32_MAX);
+  for (std::size_t i = 0; i < whole.num_points(); ++i)
+    first[static_cast<std::size_t>(whole.block[i])] = std::min(first[static_cast<std::size_t>(whole.block[i])], whole.input_id[i]);
+  std::map<std::tuple<int, std::uint64_t>, std::tuple<double, double, double>> expected;
+  for (std::size_t i = 0; i < whole.num_points(); ++i)
+    if (whole.block[i] != 1) expected[{whole.block[i], whole.input_id[i] - first[static_cast<std::size_t>(whole.block[i])]}] = {whole.x(i, 0), whole.x(i, 1), whole.volume[i]};
+  ASSERT_EQ(expected.size(), 18u + 12u);  // 23 lines, 5 of block 2; 12 quadrilaterals
+  for (int ranks : {1, 2, 3, 4}) {
+    std::map<std::tuple<int, std::uint64_t>, std::tuple<double, double, double>> kept;
+    for (int r = 0; r < ranks; ++r) {
+      const peridot::FilePoints files = peridot::read_file_bodies(problem, r, ranks);
+      EXPECT_EQ(files.body_points, (std::vector<std::uint64_t>{18, 0, 12}));
+      for (std::size_t k = 0; k < files.disc.num_points(); ++k) {
+        EXPECT_EQ(files.place[k] % static_cast<std::uint64_t>(ranks), static_cast<std::uint64_t>(r));
+        const bool fresh = kept.emplace(std::tuple{files.disc.block[k], files.place[k]},
+                                        std::tuple{files.disc.x(k, 0), files.disc.x(k, 1), files.disc.volume[k]}).second;
+        EXPECT_TRUE(fresh) << "a point kept by two ranks";
+      }
+      // The mesh's node set by place, whole on every rank: the serial set less the body's first input id.
+      ASSERT_EQ(files.sets.size(), 1u);
+      std::vector<std::uint32_t> serial;
+      ASSERT_EQ(whole.mesh_sets.size(), 1u);
+      EXPECT_EQ(files.sets[0].name, whole.mesh_sets[0].name);
+      EXPECT_EQ(files.sets[0].block, 2);
+      for (std::uint32_t id : whole.mesh_sets[0].input_ids) serial.push_back(id - first[2]);
+      EXPECT_EQ(files.sets[0].input_ids, serial);
+      EXPECT_EQ(serial.size(), 3u);  // the elements of the column at x = 10 mm
+    }
+    EXPECT_EQ(kept, expected) << ranks << " ranks: the shares are discretize's file points, each once";
   }
 }

@@ -218,12 +218,17 @@ void check_size(const Problem& problem) {
                                  problem.memory_limit > 0 ? "allowed by --max-memory" : "of this machine's memory"));
 }
 
-void read_point_file(const Problem& problem, const BodySpec& body, std::int32_t block, std::vector<RawPoint>& out) {
+/// Appends the points of a point-file body whose place k in the file (after the block filter) passes keep(k);
+/// returns how many points the file gives the body.
+template <class Keep>
+std::size_t read_point_file(const Problem& problem, const BodySpec& body, std::int32_t block, Keep&& keep,
+                            std::vector<RawPoint>& out) {
   std::ifstream in(body.points_file);
   if (!in) throw InputError(body.pos, "bodies." + body.name + ": cannot open points_file '" + body.points_file + "'");
   const int dim = problem.dimension;
   std::string line;
   int line_number = 0;
+  std::size_t count = 0;
   while (std::getline(in, line)) {
     ++line_number;
     auto hash = line.find('#');
@@ -252,15 +257,29 @@ void read_point_file(const Problem& problem, const BodySpec& body, std::int32_t 
       throw InputError(SourcePos{body.points_file, line_number, 1},
                        "bodies." + body.name + ": point volume must be positive");
     }
-    out.push_back({p, volume, block, 0});
+    if (keep(count++)) out.push_back({p, volume, block, 0});
   }
+  return count;
+}
+
+/// Appends the points of a body read from a point file or a mesh, in file order, whose place k in the body
+/// passes keep(k), and its mesh's sets (points by place in the body); returns the body's point count.
+/// `meshes`: the meshes read so far (bodies sharing a file read it once).
+template <class Keep>
+std::size_t read_file_body(const Problem& problem, std::int32_t block, std::map<std::string, Mesh>& meshes, Keep&& keep,
+                           std::vector<RawPoint>& out, std::vector<MeshPointSet>& sets) {
+  const BodySpec& body = problem.bodies[static_cast<std::size_t>(block)];
+  if (!body.mesh) return read_point_file(problem, body, block, keep, out);
+  const std::string key = body.mesh->format + ":" + body.mesh->file;
+  if (!meshes.contains(key)) meshes.emplace(key, read_mesh(*body.mesh));
+  const MeshPoints points = mesh_points(meshes.at(key), *body.mesh, problem.dimension, problem.cross_section(), body.name);
+  for (std::size_t i = 0; i < points.x.size(); ++i)
+    if (keep(i)) out.push_back({points.x[i], points.volume[i], block, 0});
+  sets = mesh_point_sets(meshes.at(key), points);
+  return points.x.size();
 }
 
 }  // namespace
-
-bool generated_by_window(const Problem& problem) {
-  return std::all_of(problem.bodies.begin(), problem.bodies.end(), [](const BodySpec& b) { return b.shape.has_value(); });
-}
 
 LatticeExtent lattice_extent(const Problem& problem) {
   LatticeExtent e;
@@ -345,11 +364,11 @@ SiteBox bisected_site_box(const Problem& problem, int rank, int ranks) {
 }
 
 LatticePoints discretize_window(const Problem& problem, const SiteBox& window) {
-  PERIDOT_REQUIRE(generated_by_window(problem), "discretize_window: a body is not a shape on the lattice");
   check_size(problem);
   const LatticeExtent extent = lattice_extent(problem);
   std::vector<RawPoint> raw;
   for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
+    if (!problem.bodies[b].shape) continue;
     fill_shape(problem, static_cast<std::int32_t>(b), extent, window, raw);
     std::vector<std::uint32_t> layer;
     if (problem.bodies[b].volume_constraint > 0) fill_layer(problem, static_cast<std::int32_t>(b), extent, window, raw, layer);
@@ -370,6 +389,37 @@ LatticePoints discretize_window(const Problem& problem, const SiteBox& window) {
     out.layer[k] = raw[k].layer ? 1 : 0;
   }
   return out;
+}
+
+FilePoints read_file_bodies(const Problem& problem, int rank, int ranks) {
+  FilePoints files;
+  files.disc.dimension = problem.dimension;
+  for (const BodySpec& body : problem.bodies) files.disc.block_names.push_back(body.name);
+  files.body_points.assign(problem.bodies.size(), 0);
+  std::map<std::string, Mesh> meshes;
+  std::vector<RawPoint> raw;
+  for (std::size_t b = 0; b < problem.bodies.size(); ++b) {
+    if (problem.bodies[b].shape) continue;
+    const std::size_t before = raw.size();
+    std::vector<MeshPointSet> sets;
+    const auto keep = [&](std::size_t k) { return k % static_cast<std::size_t>(ranks) == static_cast<std::size_t>(rank); };
+    files.body_points[b] = read_file_body(problem, static_cast<std::int32_t>(b), meshes, keep, raw, sets);
+    for (std::size_t k = before; k < raw.size(); ++k)
+      files.place.push_back(static_cast<std::uint64_t>(rank) + static_cast<std::uint64_t>(ranks) * (k - before));
+    for (MeshPointSet& set : sets) {
+      Discretization::MeshSet& out = files.sets.emplace_back();
+      out.name = std::move(set.name);
+      out.block = static_cast<std::int32_t>(b);
+      out.input_ids.assign(set.points.begin(), set.points.end());
+    }
+  }
+  files.disc.x.resize(raw.size());
+  for (std::size_t k = 0; k < raw.size(); ++k) {
+    files.disc.x.set(k, raw[k].x);
+    files.disc.volume.push_back(raw[k].volume);
+    files.disc.block.push_back(raw[k].block);
+  }
+  return files;
 }
 
 Discretization discretize(const Problem& problem) {
@@ -395,21 +445,15 @@ Discretization discretize(const Problem& problem) {
                                           ".volume_constraint: the layer holds no lattice site (is it thinner than the "
                                           "spacing, or inside other bodies?)"});
       }
-    } else if (body.mesh) {
-      const std::string key = body.mesh->format + ":" + body.mesh->file;  // bodies sharing a file read it once
-      if (!meshes.contains(key)) meshes.emplace(key, read_mesh(*body.mesh));
-      const MeshPoints points =
-          mesh_points(meshes.at(key), *body.mesh, problem.dimension, problem.cross_section(), body.name);
-      for (std::size_t i = 0; i < points.x.size(); ++i)
-        raw.push_back({points.x[i], points.volume[i], static_cast<std::int32_t>(b), 0});
-      for (MeshPointSet& set : mesh_point_sets(meshes.at(key), points)) {
+    } else {
+      std::vector<MeshPointSet> sets;
+      read_file_body(problem, static_cast<std::int32_t>(b), meshes, [](std::size_t) { return true; }, raw, sets);
+      for (MeshPointSet& set : sets) {
         Discretization::MeshSet& out = mesh_sets.emplace_back();
         out.name = std::move(set.name);
         out.block = static_cast<std::int32_t>(b);
         for (std::size_t k : set.points) out.input_ids.push_back(static_cast<std::uint32_t>(before + k));
       }
-    } else {
-      read_point_file(problem, body, static_cast<std::int32_t>(b), raw);
     }
     if (raw.size() == before)
       errors.push_back({body.pos, "bodies." + body.name + ": the body contains no point (is it smaller than the spacing?)"});

@@ -22,8 +22,8 @@ Discretization discretize(const Problem& problem);
 std::vector<BlockRange> block_ranges(const Discretization& disc, std::size_t count = SIZE_MAX);
 
 // -- distributed generation (parallel/domain.hpp) ------------------------------------------------------------
-// A run whose bodies are all shapes on the lattice (jittered or not) can be generated piece by piece: each rank
-// makes the sites of its box of the lattice only (bisected_site_box). What the whole-problem order needs of a point is then
+// A distributed run is generated piece by piece: each rank makes the sites of its box of the lattice only
+// (bisected_site_box), and keeps a share of the points of point files and meshes (read_file_bodies). What the whole-problem order needs of a point is then
 // derived from its site alone, so that every rank count gives the serial order and ids:
 //   generation order (the input id's order): block, then shape points before the body's volume-constraint
 //       layer, then the site's linear index (k, j, i raster: the order fill_shape visits them in);
@@ -41,8 +41,6 @@ struct LatticeExtent {
   }
 };
 
-/// Whether discretize_window can make this problem (every body a shape on the lattice).
-bool generated_by_window(const Problem& problem);
 LatticeExtent lattice_extent(const Problem& problem);
 
 struct LatticePoints {
@@ -63,10 +61,22 @@ struct SiteBox {
 /// as spread evenly over its bounding box, layer included) split in proportion to the ranks on either side.
 SiteBox bisected_site_box(const Problem& problem, int rank, int ranks);
 
-/// The points of the sites inside `window`, in generation order: the same points (same bits) discretize()
-/// makes there. Checks the problem's size as discretize() does; an empty body is the caller's to find (it
-/// needs every window).
+/// The points of the sites inside `window` of the bodies that are shapes on the lattice, in generation order:
+/// the same points (same bits) discretize() makes there. Checks the problem's size as discretize() does; an
+/// empty body is the caller's to find (it needs every window).
 LatticePoints discretize_window(const Problem& problem, const SiteBox& window);
+
+/// The points of the bodies read from point files or meshes that rank `rank` of `ranks` keeps: a body's k-th
+/// point (file order, its place) when k mod ranks = rank, so that no rank holds a whole file's points (a rank
+/// still parses every line, and a mesh is read whole during the call). The generation order of such a body is
+/// its file order; Zoltan then moves each point to its owner, wherever it was read.
+struct FilePoints {
+  Discretization disc;                        ///< x, volume, block of the points kept (body order, then place)
+  std::vector<std::uint64_t> place;           ///< each kept point's place in its body
+  std::vector<std::uint64_t> body_points;     ///< per block: the points its file gives (0 for a shape body)
+  std::vector<Discretization::MeshSet> sets;  ///< the meshes' sets, input_ids the places of all their points
+};
+FilePoints read_file_bodies(const Problem& problem, int rank, int ranks);
 
 /// The storage-order key of a point: the Morton code of its cell on a grid of `spacing` from `lo`.
 std::uint64_t morton_key(Vec3 x, Vec3 lo, double spacing, int dimension);

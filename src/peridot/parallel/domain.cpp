@@ -77,24 +77,6 @@ LocalDomain assemble(const Communicator& comm, const Discretization& all, const 
   return d;
 }
 
-}  // namespace
-
-LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options,
-                      PartitionMethod method) {
-  const std::size_t n = global.num_points();
-  const std::size_t begin = slice_begin(n, comm.rank(), comm.size()), end = slice_begin(n, comm.rank() + 1, comm.size());
-  const std::vector<int> owner = partition_points(comm, global, count_bonds(global, options, begin, end), method);
-  std::vector<std::uint32_t> owned;
-  for (std::size_t i = 0; i < n; ++i)
-    if (owner[i] == comm.rank()) owned.push_back(static_cast<std::uint32_t>(i));
-  LocalDomain d = assemble(comm, global, owned, build_neighborhood(global, options, owned), [](std::uint32_t t) { return t; },
-                           [&](std::uint32_t t) { return owner[t]; });
-  d.global_points = n;
-  return d;
-}
-
-namespace {
-
 /// Points travelling between ranks: four integers and four doubles each.
 struct PointPacket {
   std::vector<std::uint32_t> ints;  ///< global index, input id, block, layer flag
@@ -122,7 +104,7 @@ PointPacket send_points(const Communicator& comm, const PointPacket& out, const 
 
 }  // namespace
 
-LocalDomain decompose_generated(const Communicator& comm, const Problem& problem, const NeighborhoodOptions& options,
+LocalDomain decompose(const Communicator& comm, const Problem& problem, const NeighborhoodOptions& options,
                                 PartitionMethod method) {
   const int dim = problem.dimension, ranks = comm.size();
   const double dx = problem.spacing;
@@ -151,7 +133,7 @@ LocalDomain decompose_generated(const Communicator& comm, const Problem& problem
   std::vector<std::uint32_t> order;
   for (std::size_t k = 0; k < made_count; ++k)
     if (in_box(k)) order.push_back(static_cast<std::uint32_t>(k));
-  const std::size_t mine = order.size();
+  std::size_t mine = order.size();
   for (std::size_t k = 0; k < made_count; ++k)
     if (!in_box(k)) order.push_back(static_cast<std::uint32_t>(k));
   Discretization generated;
@@ -170,17 +152,49 @@ LocalDomain decompose_generated(const Communicator& comm, const Problem& problem
     if (k < mine) site[k] = made.site[from], layer[k] = made.layer[from];
   }
   made = LatticePoints{};
-  const std::vector<std::uint64_t> bond_count = count_bonds(generated, options, 0, mine);
+  std::vector<std::uint64_t> bond_count = count_bonds(generated, options, 0, mine);
 
-  // Empty bodies and layers, from every box's count.
+  // Then this rank's share of the point-file and mesh bodies (read_file_bodies): after the box's lattice points,
+  // in place of the window's others. Their third key is their place in the body's file (the generation order);
+  // their partners are not here, so their Zoltan weight is a full family's bond count estimated from the volume.
+  FilePoints files = read_file_bodies(problem, comm.rank(), ranks);
+  {
+    const std::size_t from_files = files.disc.num_points();
+    Discretization both;
+    both.dimension = dim;
+    both.block_names = generated.block_names;
+    both.x.resize(mine + from_files);
+    for (std::size_t k = 0; k < mine; ++k) both.x.set(k, generated.x.get(k));
+    for (std::size_t k = 0; k < from_files; ++k) both.x.set(mine + k, files.disc.x.get(k));
+    both.volume.assign(generated.volume.begin(), generated.volume.begin() + static_cast<std::ptrdiff_t>(mine));
+    both.volume.insert(both.volume.end(), files.disc.volume.begin(), files.disc.volume.end());
+    both.block.assign(generated.block.begin(), generated.block.begin() + static_cast<std::ptrdiff_t>(mine));
+    both.block.insert(both.block.end(), files.disc.block.begin(), files.disc.block.end());
+    generated = std::move(both);
+    site.insert(site.end(), files.place.begin(), files.place.end());
+    layer.resize(mine + from_files, 0);
+    const double measure = dim == 3 ? 4.18879020478639 : dim == 2 ? 3.14159265358979 : 2.0;  // unit ball
+    for (std::size_t k = 0; k < from_files; ++k) {
+      const double delta = options.horizon_of_block[static_cast<std::size_t>(files.disc.block[k])];
+      const double cell = files.disc.volume[k] / problem.cross_section();
+      bond_count.push_back(static_cast<std::uint64_t>(std::max(1.0, std::round(measure * std::pow(delta, dim) / cell))));
+    }
+    mine += from_files;
+    files.disc = Discretization{};
+    files.place = {};
+  }
+
+  // Empty bodies and layers, from every box's count; each block's first input id.
   const std::size_t blocks = problem.bodies.size();
   std::vector<Diagnostic> errors;
+  std::vector<std::uint64_t> first_input(blocks + 1, 0);
   for (std::size_t b = 0; b < blocks; ++b) {
     std::uint64_t points = 0, layer_points = 0;
     for (std::size_t k = 0; k < mine; ++k)
       if (generated.block[k] == static_cast<std::int32_t>(b)) (layer[k] ? layer_points : points) += 1;
     points = comm.sum(points);
     layer_points = comm.sum(layer_points);
+    first_input[b + 1] = first_input[b] + points + layer_points;
     const BodySpec& body = problem.bodies[b];
     if (points == 0) errors.push_back({body.pos, "bodies." + body.name + ": the body contains no point (is it smaller than the spacing?)"});
     else if (body.volume_constraint > 0 && layer_points == 0)
@@ -218,7 +232,7 @@ LocalDomain decompose_generated(const Communicator& comm, const Problem& problem
   box_points.x.resize(mine);
   box_points.volume.assign(generated.volume.begin(), generated.volume.begin() + static_cast<std::ptrdiff_t>(mine));
   for (std::size_t k = 0; k < mine; ++k) box_points.x.set(k, generated.x.get(k));
-  const std::vector<int> owner = partition_local_points(comm, box_points, box_global, bond_count, method);
+  const std::vector<int> owner = partition_points(comm, box_points, box_global, bond_count, method);
   box_points = Discretization{};
   std::vector<std::uint32_t> by_owner(mine);
   std::iota(by_owner.begin(), by_owner.end(), 0u);
@@ -293,15 +307,29 @@ LocalDomain decompose_generated(const Communicator& comm, const Problem& problem
   LocalDomain d = assemble(comm, all, owned_in_all, build_neighborhood(all, options, owned_in_all), [&](std::uint32_t t) { return all_global[t]; },
                            [&](std::uint32_t t) { return all_owner[t]; });
   d.global_points = total;
-  // The volume-constraint layers, by input id, over the rank's points.
+  // The volume-constraint layers and the meshes' sets, by input id, over the rank's points, in the serial order
+  // (body after body).
+  std::vector<std::uint32_t> local_inputs = d.disc.input_id;
+  std::sort(local_inputs.begin(), local_inputs.end());
   for (std::size_t b = 0; b < blocks; ++b) {
-    if (!(problem.bodies[b].volume_constraint > 0)) continue;
-    Discretization::MeshSet& set = d.disc.mesh_sets.emplace_back();
-    set.name = problem.bodies[b].name + "_constraint";
-    set.block = static_cast<std::int32_t>(b);
-    for (std::size_t l = 0; l < d.global_index.size(); ++l) {
-      const auto t = static_cast<std::size_t>(std::lower_bound(all_global.begin(), all_global.end(), d.global_index[l]) - all_global.begin());
-      if (all_layer[t] && all.block[t] == static_cast<std::int32_t>(b)) set.input_ids.push_back(d.disc.input_id[l]);
+    if (problem.bodies[b].volume_constraint > 0) {
+      Discretization::MeshSet& set = d.disc.mesh_sets.emplace_back();
+      set.name = problem.bodies[b].name + "_constraint";
+      set.block = static_cast<std::int32_t>(b);
+      for (std::size_t l = 0; l < d.global_index.size(); ++l) {
+        const auto t = static_cast<std::size_t>(std::lower_bound(all_global.begin(), all_global.end(), d.global_index[l]) - all_global.begin());
+        if (all_layer[t] && all.block[t] == static_cast<std::int32_t>(b)) set.input_ids.push_back(d.disc.input_id[l]);
+      }
+    }
+    for (const Discretization::MeshSet& read : files.sets) {
+      if (read.block != static_cast<std::int32_t>(b)) continue;
+      Discretization::MeshSet& set = d.disc.mesh_sets.emplace_back();
+      set.name = read.name;
+      set.block = read.block;
+      for (std::uint32_t place : read.input_ids) {
+        const auto id = static_cast<std::uint32_t>(first_input[b] + place);
+        if (std::binary_search(local_inputs.begin(), local_inputs.end(), id)) set.input_ids.push_back(id);
+      }
     }
   }
   return d;

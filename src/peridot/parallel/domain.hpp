@@ -1,6 +1,7 @@
 #pragma once
-// One rank's share of a problem (docs/design.md "Determinism"; docs/parallel.md). Every rank holds the whole
-// discretization (cheap next to the bonds); the bonds, the state and the work are split:
+// One rank's share of a problem (docs/design.md "Determinism"; docs/parallel.md). Lattice bodies are made
+// piece by piece and point files and meshes read in shares (decompose: no rank holds the whole problem). The
+// points, bonds, state and work are then split:
 //  - owned points: those the partition (partition.hpp) gives this rank, in increasing global index, so
 //    that each block stays one contiguous range and the point order is the serial one;
 //  - ghosts: every bond partner of an owned point that another rank owns (halo.hpp), after the owned points;
@@ -28,26 +29,23 @@ struct LocalDomain {
   std::size_t global_points = 0;            ///< of all ranks
 };
 
-/// Partitions the global discretization and builds this rank's domain. Collective.
-LocalDomain decompose(const Communicator& comm, const Discretization& global, const NeighborhoodOptions& options,
-                      PartitionMethod method = PartitionMethod::rcb);
-
-/// The same domain (the same owned points, families and ghosts, in the same order, with the serial global
-/// indices and input ids) without any rank holding the whole problem, for the problems
-/// geometry/discretize.hpp can generate by window:
+/// This rank's domain: the same owned points, families and ghosts, in the same order, with the serial global
+/// indices and input ids, as a serial run's discretize() and build_neighborhood() give, without any rank
+/// holding the whole problem:
 ///  1. rank r makes the sites of its box of the lattice (geometry/discretize.hpp, bisected_site_box: a
 ///     recursive bisection weighted by the bodies' estimated site counts), plus one reach (δ + r) of planes
-///     on every side, and counts the bonds of its box's points;
-///  2. the serial storage order and generation order are found from the points' sites (global_order.hpp):
-///     the global index and the input id;
-///  3. Zoltan partitions the boxes' points by bond count; each point moves once, to its owner;
+///     on every side, and counts the bonds of its box's points; it keeps every r-th point of the point files
+///     and meshes (read_file_bodies), weighted by a full family's estimated bond count;
+///  2. the serial storage order and generation order are found from the points' sites (lattice) or places
+///     in their files (global_order.hpp): the global index and the input id;
+///  3. Zoltan partitions these points by bond count; each point moves once, to its owner;
 ///  4. each owner's bounding box widened by the reach is sent to every rank, which sends back its points in
 ///     that box: the candidates for ghosts, from which the owned points' families are built.
-/// The volume-constraint layers are the discretization's mesh sets (<body>_constraint), by input id, over
-/// the rank's points (owned and ghosts). Throws InputError (on every rank) for an empty body or layer.
-/// Collective.
-LocalDomain decompose_generated(const Communicator& comm, const Problem& problem, const NeighborhoodOptions& options,
-                                PartitionMethod method = PartitionMethod::rcb);
+/// The volume-constraint layers (<body>_constraint) and the meshes' sets are the discretization's mesh sets,
+/// by input id, over the rank's points (owned and ghosts). Throws InputError (on every rank) for an empty
+/// body or layer, or a file that cannot be read. Collective.
+LocalDomain decompose(const Communicator& comm, const Problem& problem, const NeighborhoodOptions& options,
+                      PartitionMethod method = PartitionMethod::rcb);
 
 /// For the models that read their partner's bond (history, correspondence weights): fills
 /// domain.bonds.reverse — the local bond j → i where j is owned, else a partner-bond slot (fields.hpp) —

@@ -14,7 +14,7 @@ struct Slice {
   const Discretization* disc;
   std::size_t begin, end;
   const std::vector<std::uint64_t>* weight;
-  const std::vector<std::uint32_t>* global_id = nullptr;  ///< of point begin + k; null: begin + k itself
+  const std::vector<std::uint32_t>* global_id;  ///< of point begin + k
 };
 
 int count_objects(void* data, int* ierr) {
@@ -27,7 +27,7 @@ void list_objects(void* data, int, int, ZOLTAN_ID_PTR global_ids, ZOLTAN_ID_PTR 
                   float* weights, int* ierr) {
   const Slice& s = *static_cast<Slice*>(data);
   for (std::size_t k = 0; k < s.end - s.begin; ++k) {
-    global_ids[k] = static_cast<ZOLTAN_ID_TYPE>(s.global_id ? (*s.global_id)[s.begin + k] : s.begin + k);
+    global_ids[k] = static_cast<ZOLTAN_ID_TYPE>((*s.global_id)[s.begin + k]);
     local_ids[k] = static_cast<ZOLTAN_ID_TYPE>(k);
     // A point with no bond still costs its integration: weight at least 1.
     if (weight_dim == 1) weights[k] = static_cast<float>(std::max<std::uint64_t>(1, (*s.weight)[k]));
@@ -82,17 +82,7 @@ std::vector<int> partition_slice(const Communicator& comm, Slice& slice, Partiti
 
 }  // namespace
 
-std::vector<int> partition_points(const Communicator& comm, const Discretization& disc,
-                                  const std::vector<std::uint64_t>& slice_weight, PartitionMethod method) {
-  const std::size_t n = disc.num_points();
-  if (comm.serial()) return std::vector<int>(n, 0);
-  Slice slice{&disc, slice_begin(n, comm.rank(), comm.size()), slice_begin(n, comm.rank() + 1, comm.size()), &slice_weight};
-  const std::vector<int> slice_owner = partition_slice(comm, slice, method);
-  std::vector<std::int32_t> owner = comm.all_gather(std::vector<std::int32_t>(slice_owner.begin(), slice_owner.end()));
-  return std::vector<int>(owner.begin(), owner.end());
-}
-
-std::vector<int> partition_local_points(const Communicator& comm, const Discretization& points,
+std::vector<int> partition_points(const Communicator& comm, const Discretization& points,
                                         const std::vector<std::uint32_t>& global_id,
                                         const std::vector<std::uint64_t>& weight, PartitionMethod method) {
   if (comm.serial()) return std::vector<int>(points.num_points(), 0);

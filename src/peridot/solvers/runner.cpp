@@ -102,8 +102,8 @@ std::string describe_setup(const Simulation& sim) {
     out << fmt::format("ranks            {} (owned points per rank {:.0f} to {:.0f}, ghosts up to {:.0f})\n", comm.size(),
                        comm.min(owned), comm.max(owned), comm.max(ghosts));
     out << fmt::format("memory           {:.1f} MiB on the largest rank (points and bonds)\n", comm.max(memory) / (1 << 20));
-    out << (sim.generated_per_rank() ? "points made      by each rank for its own part of space (a box of the lattice)\n"
-                                     : "points made      whole on every rank (a point file or mesh body)\n");
+    out << "points made      by each rank for its own part of space (its box of the lattice, its share of the point "
+           "files and meshes)\n";
   }
   out << sim.integrator().describe();
   return out.str();

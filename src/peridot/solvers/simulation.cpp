@@ -20,22 +20,6 @@ namespace peridot {
 
 namespace {
 
-/// The owned local points of every global set (the owned global indices are increasing).
-std::vector<NodeSet> local_node_sets(const std::vector<NodeSet>& global, const std::vector<std::uint32_t>& global_index,
-                                     std::size_t owned) {
-  std::vector<NodeSet> local;
-  const auto first = global_index.begin(), last = global_index.begin() + static_cast<std::ptrdiff_t>(owned);
-  for (const NodeSet& set : global) {
-    NodeSet mine{set.name, {}};
-    for (std::uint32_t g : set.points) {
-      const auto found = std::lower_bound(first, last, g);
-      if (found != last && *found == g) mine.points.push_back(static_cast<std::uint32_t>(found - first));
-    }
-    local.push_back(std::move(mine));
-  }
-  return local;
-}
-
 /// The isotropic quadrature's direction weight of a body's block (discretization.quadrature: isotropic), fitted
 /// to its model's stiffness moment; a model whose sums are not of that form is refused.
 IsotropicQuadrature fit_block_quadrature(const Problem& problem, const BodySpec& body, const MaterialParams& p,
@@ -90,10 +74,9 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
   };
   // The partner bond j → i: the inelastic models read its history.
   const bool needs_partner_bonds = model_.bond_history_arrays() > 0;
-  // Distributed, the problems whose points are made on the lattice are made piece by piece: no rank holds
-  // them all (parallel/domain.hpp, decompose_generated); other problems are discretized whole on every rank.
-  const bool generated = generated_per_rank_ = !comm_.serial() && generated_by_window(problem_);
-  Discretization whole;  // distributed: the whole problem's points (or the part a check reads), during the set-up only
+  // Distributed, the points are made (lattice) and read (point files, meshes) piece by piece: no rank holds
+  // them all (parallel/domain.hpp).
+  Discretization near_walls;  // distributed: the points the symmetry walls' check reads, during the set-up only
   if (comm_.serial()) {
     disc_ = discretize(problem_);
     node_sets_ = build_node_sets(problem_, disc_);
@@ -102,8 +85,8 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     if (needs_partner_bonds) build_reverse_bonds(bonds_);
     mark_no_fail(disc_, node_sets_);
     model_.no_fail = std::move(no_fail);
-  } else if (generated) {
-    LocalDomain domain = decompose_generated(comm_, problem_, neighborhood, problem_.partition);
+  } else {
+    LocalDomain domain = decompose(comm_, problem_, neighborhood, problem_.partition);
     if (needs_partner_bonds) bond_halo_ = build_partner_bonds(comm_, domain);
     disc_ = std::move(domain.disc);
     bonds_ = std::move(domain.bonds);
@@ -127,27 +110,12 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
     model_.no_fail = std::move(no_fail);
     // The symmetry walls' check reads the points within a horizon of their planes (or behind them), in the
     // global order: those are gathered, on every rank, and no others.
-    whole = assemble_discretization([&](std::size_t i) {
+    near_walls = assemble_discretization([&](std::size_t i) {
       const double horizon = model_.params[static_cast<std::size_t>(disc_.block[i])].horizon;
       return std::any_of(problem_.rigid_walls.begin(), problem_.rigid_walls.end(), [&](const RigidWallSpec& w) {
         return w.contact == WallContactKind::symmetry && dot(disc_.x.get(i) - w.point, w.normal) < horizon;
       });
     });
-  } else {
-    whole = discretize(problem_);
-    global_points_ = whole.num_points();
-    const std::vector<NodeSet> global_node_sets = build_node_sets(problem_, whole);
-    LocalDomain domain = decompose(comm_, whole, neighborhood, problem_.partition);
-    if (needs_partner_bonds) bond_halo_ = build_partner_bonds(comm_, domain);
-    disc_ = std::move(domain.disc);
-    bonds_ = std::move(domain.bonds);
-    owned_ = domain.owned;
-    global_index_ = std::move(domain.global_index);
-    halo_ = std::move(domain.halo);
-    node_sets_ = local_node_sets(global_node_sets, global_index_, owned_);
-    mark_no_fail(whole, global_node_sets);
-    if (!no_fail.empty())  // ghosts too: a bond to a protected ghost never breaks
-      for (std::uint32_t g : global_index_) model_.no_fail.push_back(no_fail[g]);
   }
   setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   model_.disc = &disc_;
@@ -156,7 +124,7 @@ Simulation::Simulation(const Problem& problem, Communicator comm) : problem_(pro
 
   std::optional<InputError> refused;
   try {
-    check_symmetry_walls(problem_, comm_.serial() ? disc_ : whole, model_.params);
+    check_symmetry_walls(problem_, comm_.serial() ? disc_ : near_walls, model_.params);
     correspondence_ = std::make_unique<CorrespondenceBlocks>(problem_, model_, &halo_, comm_);
     bodies_ = std::make_unique<RigidBodies>(problem_, model_);
     if (problem_.temperature) temperature_ = std::make_unique<TemperatureField>(*problem_.temperature, disc_);

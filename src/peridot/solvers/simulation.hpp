@@ -192,9 +192,6 @@ class Simulation {
   Vec3 reaction(const std::string& set_name) const;
   /// Bytes held by this rank's points and bonds (an estimate for `peridot check`).
   std::size_t memory_bytes() const;
-  /// Distributed: whether each rank made only its own part of the points (parallel/domain.hpp,
-  /// decompose_generated), not the whole problem.
-  bool generated_per_rank() const { return generated_per_rank_; }
   /// Seconds this rank took to make its points, their bonds and the partition (Simulation()).
   double setup_seconds() const { return setup_seconds_; }
   /// Points of the whole problem.
@@ -240,7 +237,6 @@ class Simulation {
   Communicator comm_;
   Discretization disc_;
   std::size_t owned_ = 0, global_points_ = 0;
-  bool generated_per_rank_ = false;
   double setup_seconds_ = 0;
   SurfaceCorrectionResult surface_correction_;
   std::vector<std::uint32_t> global_index_;
