@@ -95,6 +95,7 @@ std::uint64_t checkpoint_checksum(const CheckpointData& data) {
   hash.add(data.deck);
   hash.add(data.family_size.data(), data.family_size.size() * sizeof(std::uint32_t));
   hash.add(data.point_index.data(), data.point_index.size() * sizeof(std::uint32_t));  // none in a whole file
+  hash.add(data.piece_boxes.data(), data.piece_boxes.size() * sizeof(double));           // piece 0 only
   for (const CheckpointArray& array : data.arrays) {
     hash.add(array.name);
     hash.add(array.layout);
@@ -149,6 +150,7 @@ void write_checkpoint_file(const std::string& path, const CheckpointData& data) 
   };
   const int family = define("family_size", NC_UINT, data.family_size.size());
   const int index = data.point_index.empty() ? -1 : define("point_index", NC_UINT, data.point_index.size());
+  const int boxes = data.piece_boxes.empty() ? -1 : define("piece_boxes", NC_DOUBLE, data.piece_boxes.size());
   std::vector<int> vars;
   for (const CheckpointArray& array : data.arrays) {
     const int var = define(array.name, NC_UBYTE, array.bytes.size());
@@ -160,6 +162,7 @@ void write_checkpoint_file(const std::string& path, const CheckpointData& data) 
   nc.check(nc_enddef(id), "its header");
   if (!data.family_size.empty()) nc.check(nc_put_var_uint(id, family, data.family_size.data()), "variable family_size");
   if (index >= 0) nc.check(nc_put_var_uint(id, index, data.point_index.data()), "variable point_index");
+  if (boxes >= 0) nc.check(nc_put_var_double(id, boxes, data.piece_boxes.data()), "variable piece_boxes");
   for (std::size_t k = 0; k < vars.size(); ++k)
     if (!data.arrays[k].bytes.empty())
       nc.check(nc_put_var_uchar(id, vars[k], data.arrays[k].bytes.data()), "variable " + data.arrays[k].name);
@@ -172,7 +175,7 @@ void write_checkpoint_file(const std::string& path, const CheckpointData& data) 
   sync_path(folder.empty() ? fs::path(".") : folder, true);
 }
 
-CheckpointData read_checkpoint_file(const std::string& path) {
+CheckpointData read_checkpoint_file(const std::string& path, bool header_only) {
   NcFile<CheckpointFileError> nc(path, "read");
   if (!fs::is_regular_file(path)) nc.fail("no such file");
   nc.check(nc_open(path.c_str(), NC_NOWRITE, &nc.id()), "opening it (not a checkpoint, or truncated)");
@@ -195,6 +198,7 @@ CheckpointData read_checkpoint_file(const std::string& path) {
   }
 
   int nvars = 0;
+  std::size_t points_in_file = 0;
   nc.check(nc_inq_nvars(id, &nvars), "its variables");
   for (int var = 0; var < nvars; ++var) {
     char name[NC_MAX_NAME + 1] = {};
@@ -208,11 +212,19 @@ CheckpointData read_checkpoint_file(const std::string& path) {
     } else if (ndims != 0 || nc_inq_att(id, var, "empty", nullptr, nullptr) != NC_NOERR) {
       nc.fail(std::string("variable ") + name + " is not one-dimensional");
     }
+    if (header_only && std::string(name) == "family_size") points_in_file = length;
+    if (header_only && std::string(name) != "piece_boxes") continue;
     if (std::string(name) == "family_size" || std::string(name) == "point_index") {
       if (type != NC_UINT) nc.fail(std::string(name) + " is not of unsigned integers");
       std::vector<std::uint32_t>& values = std::string(name) == "family_size" ? data.family_size : data.point_index;
       values.resize(length);
       if (length > 0) nc.check(nc_get_var_uint(id, var, values.data()), std::string("variable ") + name);
+      continue;
+    }
+    if (std::string(name) == "piece_boxes") {
+      if (type != NC_DOUBLE) nc.fail("piece_boxes is not of doubles");
+      data.piece_boxes.resize(length);
+      if (length > 0) nc.check(nc_get_var_double(id, var, data.piece_boxes.data()), "variable piece_boxes");
       continue;
     }
     if (type != NC_UBYTE) nc.fail(std::string("variable ") + name + " is not of bytes");
@@ -225,9 +237,15 @@ CheckpointData read_checkpoint_file(const std::string& path) {
     data.arrays.push_back(std::move(array));
   }
   nc.close();
+  if (header_only) {
+    if (data.pieces == 1) data.global_points = points_in_file;
+    return data;
+  }
   if (checkpoint_checksum(data) != checksum) nc.fail("its checksum does not match its contents (the file is corrupt)");
   if (data.pieces == 1) data.global_points = data.family_size.size();
   if (data.pieces > 1 && data.point_index.size() != data.family_size.size()) nc.fail("its point_index does not match its points");
+  if (!data.piece_boxes.empty() && data.piece_boxes.size() != 6 * static_cast<std::size_t>(data.pieces))
+    nc.fail("its piece_boxes do not match its pieces");
   return data;
 }
 

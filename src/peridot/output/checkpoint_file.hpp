@@ -6,7 +6,8 @@
 //  - family_size: each point's bond count, in the global point order (a piece: in the piece's order);
 //  - a distributed run's checkpoint is one file per rank, NAME.N.r (the Exodus pieces' convention,
 //    output/exodus_writer.hpp), each with its owned points only: attributes pieces (N) and global_points, and a
-//    variable point_index, each point's index in the whole problem;
+//    variable point_index, each point's index in the whole problem; piece 0 also holds piece_boxes, every
+//    piece's box of its points' reference positions, so that a restart reads only the pieces near its points;
 //  - one NC_UBYTE variable per state array, with its layout ("point", "bond", "global") and its width in
 //    bytes (per point or bond; in all for a global one) as attributes.
 // It is written to NAME.tmp, flushed to disk (fsync), then renamed over NAME and the folder synced, so that a
@@ -39,6 +40,9 @@ struct CheckpointData {
   std::vector<std::uint32_t> point_index;
   int pieces = 1;
   std::uint64_t global_points = 0;  ///< points of the whole problem (a whole file: family_size.size())
+  /// Piece 0 of a distributed checkpoint: each piece's box of its points' reference positions (lo x, y, z,
+  /// hi x, y, z; an empty piece's lo above its hi), piece after piece. Otherwise empty.
+  std::vector<double> piece_boxes;
 };
 
 /// A checkpoint that cannot be read or fails its checksum; what() says which file and why.
@@ -47,8 +51,8 @@ class CheckpointFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// FNV-1a over the fingerprint, the family sizes, a piece's point indices and every array (name, layout, width
-/// and bytes).
+/// FNV-1a over the fingerprint, the family sizes, a piece's point indices, the piece boxes and every array
+/// (name, layout, width and bytes).
 std::uint64_t checkpoint_checksum(const CheckpointData& data);
 
 /// Writes data to path atomically (path.tmp, fsync, rename). Throws std::runtime_error naming the path and
@@ -56,7 +60,8 @@ std::uint64_t checkpoint_checksum(const CheckpointData& data);
 void write_checkpoint_file(const std::string& path, const CheckpointData& data);
 
 /// Reads path and verifies its checksum. Throws CheckpointFileError for a file that is missing, not a
-/// checkpoint, truncated or corrupt.
-CheckpointData read_checkpoint_file(const std::string& path);
+/// checkpoint, truncated or corrupt. `header_only`: the attributes and piece_boxes alone (no arrays, no
+/// checksum: a restart checks them before it reads the pieces it needs).
+CheckpointData read_checkpoint_file(const std::string& path, bool header_only = false);
 
 }  // namespace peridot

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "peridot/parallel/box_search.hpp"
+
 namespace peridot {
 
 ContactCandidates gather_contact_candidates(const Communicator& comm, ContactCandidates mine, double reach) {
@@ -21,19 +23,17 @@ ContactCandidates gather_contact_candidates(const Communicator& comm, ContactCan
   std::vector<double> send_reals;
   std::vector<std::int32_t> send_block;
   std::vector<int> count(static_cast<std::size_t>(comm.size()), 0), real_count(count.size(), 0);
+  const std::vector<std::vector<std::uint32_t>> inside = points_in_boxes(mine.y.data(), 3, owned, boxes, comm.rank());
   for (int r = 0; r < comm.size(); ++r) {
-    if (r == comm.rank()) continue;
-    const double* b = boxes.data() + 6 * r;
-    for (std::size_t i = 0; i < owned; ++i) {
+    for (const std::uint32_t i : inside[static_cast<std::size_t>(r)]) {
       const double* y = mine.y.data() + 3 * i;
-      if (y[0] < b[0] || y[1] < b[1] || y[2] < b[2] || y[0] > b[3] || y[1] > b[4] || y[2] > b[5]) continue;
       send_index.push_back(mine.global[i]);
       send_reals.insert(send_reals.end(), y, y + 3);
       send_reals.insert(send_reals.end(), mine.x.data() + 3 * i, mine.x.data() + 3 * i + 3);
       send_reals.push_back(mine.volume[i]);
       send_block.push_back(mine.block[i]);
-      ++count[static_cast<std::size_t>(r)];
     }
+    count[static_cast<std::size_t>(r)] = static_cast<int>(inside[static_cast<std::size_t>(r)].size());
     real_count[static_cast<std::size_t>(r)] = 7 * count[static_cast<std::size_t>(r)];
   }
   std::vector<int> received, received_reals;

@@ -6,6 +6,7 @@
 
 #include "peridot/core/error.hpp"
 #include "peridot/geometry/discretize.hpp"
+#include "peridot/parallel/box_search.hpp"
 #include "peridot/parallel/global_order.hpp"
 #include "peridot/parallel/partition.hpp"
 
@@ -255,15 +256,10 @@ LocalDomain decompose(const Communicator& comm, const Problem& problem, const Ne
       box_hi[d] = std::max(box_hi[d], owned.reals[4 * k + d] + reach);
     }
   const std::vector<double> boxes = comm.all_gather(std::vector<double>{box_lo.x, box_lo.y, box_lo.z, box_hi.x, box_hi.y, box_hi.z});
-  std::fill(count.begin(), count.end(), 0);
+  const std::vector<std::vector<std::uint32_t>> inside = points_in_boxes(owned.reals.data(), 4, owned.size(), boxes, comm.rank());
   for (int r = 0; r < ranks; ++r) {
-    if (r == comm.rank()) continue;
-    const double* box = boxes.data() + 6 * r;
-    for (std::size_t k = 0; k < owned.size(); ++k) {
-      bool inside = true;
-      for (int d = 0; d < 3; ++d) inside = inside && owned.reals[4 * k + d] >= box[d] && owned.reals[4 * k + d] <= box[3 + d];
-      if (!inside) continue;
-      ++count[static_cast<std::size_t>(r)];
+    count[static_cast<std::size_t>(r)] = static_cast<int>(inside[static_cast<std::size_t>(r)].size());
+    for (const std::uint32_t k : inside[static_cast<std::size_t>(r)]) {
       out.ints.insert(out.ints.end(), owned.ints.begin() + static_cast<std::ptrdiff_t>(4 * k), owned.ints.begin() + static_cast<std::ptrdiff_t>(4 * k + 4));
       out.reals.insert(out.reals.end(), owned.reals.begin() + static_cast<std::ptrdiff_t>(4 * k), owned.reals.begin() + static_cast<std::ptrdiff_t>(4 * k + 4));
     }

@@ -41,6 +41,17 @@ std::string first_difference(const std::string& written, const std::string& now)
   }
 }
 
+/// The box of the first n points' reference positions: lo x, y, z, hi x, y, z (no point: lo above hi).
+std::vector<double> reference_box(const Discretization& disc, std::size_t n) {
+  std::vector<double> box{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t d = 0; d < 3; ++d) {
+      box[d] = std::min(box[d], disc.x(i, static_cast<int>(d)));
+      box[3 + d] = std::max(box[3 + d], disc.x(i, static_cast<int>(d)));
+    }
+  return box;
+}
+
 std::uint32_t global_of(const Simulation& sim, std::size_t i) {
   return sim.communicator().serial() ? static_cast<std::uint32_t>(i) : sim.global_index()[i];
 }
@@ -76,6 +87,7 @@ CheckpointData collect_checkpoint(Simulation& sim) {
     data.pieces = comm.size();
     data.point_index.resize(owned);
     for (std::size_t i = 0; i < owned; ++i) data.point_index[i] = global_of(sim, i);
+    data.piece_boxes = comm.gather(reference_box(sim.discretization(), owned));  // on rank 0, which writes piece 0
   }
   const std::size_t owned_bonds = bonds.offsets[owned];
   for (const StateArray& entry : arrays.entries()) {
@@ -113,7 +125,7 @@ CheckpointSource read_checkpoint(const std::string& path, const Simulation& sim)
       set = path.substr(0, before);
     source.files = std::filesystem::exists(set) ? std::vector<std::string>{set} : piece_paths(set);
     if (source.files.empty()) source.files.push_back(path);  // reading it says why it cannot be read
-    source.first = read_checkpoint_file(source.files.front());
+    source.first = read_checkpoint_file(source.files.front(), true);
     if (source.first.pieces != static_cast<int>(source.files.size()))
       failure = fmt::format("'{}' is one of {} pieces, and {} lie beside it", source.files.front(), source.first.pieces,
                             source.files.size());
@@ -137,7 +149,7 @@ CheckpointSource read_checkpoint(const std::string& path, const Simulation& sim)
   return source;
 }
 
-void restore_checkpoint(Simulation& sim, CheckpointSource& source, const std::string& path) {
+std::size_t restore_checkpoint(Simulation& sim, CheckpointSource& source, const std::string& path) {
   const Communicator& comm = sim.communicator();
   const BondList& bonds = sim.bonds();
   const std::size_t owned = sim.num_owned(), local = sim.discretization().num_points();
@@ -151,26 +163,34 @@ void restore_checkpoint(Simulation& sim, CheckpointSource& source, const std::st
   std::vector<std::uint8_t> found(local, 0);
   StateArrays arrays = sim.state_arrays();
 
-  // One piece at a time (a whole checkpoint is one piece of every point): memory for one piece only.
-  const CheckpointData header{source.first.code_version, source.first.deck, source.first.time_step, source.first.step,
-                              source.first.time, {}, {}, {}, source.first.pieces, source.first.global_points};
+  // One piece at a time (a whole checkpoint is one piece of every point): memory for one piece only. Where the
+  // first piece lists every piece's box, only the pieces whose box meets this rank's points' box are read.
+  const CheckpointData header = std::move(source.first);
+  const std::vector<double>& boxes = header.piece_boxes;
+  const std::vector<double> here = reference_box(sim.discretization(), local);
+  auto near = [&](std::size_t f) {
+    if (boxes.size() != 6 * source.files.size()) return true;
+    const double* b = boxes.data() + 6 * f;
+    for (std::size_t d = 0; d < 3; ++d)
+      if (b[d] > here[3 + d] || b[3 + d] < here[d]) return false;
+    return true;
+  };
+  std::size_t read = 0;
   for (std::size_t f = 0; f < source.files.size() && failure.empty(); ++f) {
+    if (!near(f)) continue;
     CheckpointData piece;
-    if (f == 0) {
-      piece = std::move(source.first);
-    } else {
-      try {
-        piece = read_checkpoint_file(source.files[f]);
-      } catch (const CheckpointFileError& e) {
-        failure = e.what();
-        break;
-      }
-      if (piece.deck != header.deck || piece.step != header.step || piece.time != header.time ||
-          piece.pieces != header.pieces || piece.global_points != header.global_points) {
-        failure = fmt::format("'{}' is not of the same checkpoint as '{}'", source.files[f], source.files.front());
-        break;
-      }
+    try {
+      piece = read_checkpoint_file(source.files[f]);
+    } catch (const CheckpointFileError& e) {
+      failure = e.what();
+      break;
     }
+    if (piece.deck != header.deck || piece.step != header.step || piece.time != header.time ||
+        piece.pieces != header.pieces || piece.global_points != header.global_points) {
+      failure = fmt::format("'{}' is not of the same checkpoint as '{}'", source.files[f], source.files.front());
+      break;
+    }
+    const bool first_read = read++ == 0;
     const std::size_t m = piece.family_size.size();
     std::vector<std::uint64_t> bond_offset(m + 1, 0);  // where each of the piece's points' family starts
     for (std::size_t k = 0; k < m; ++k) bond_offset[k + 1] = bond_offset[k] + piece.family_size[k];
@@ -209,8 +229,8 @@ void restore_checkpoint(Simulation& sim, CheckpointSource& source, const std::st
         continue;
       }
       switch (entry.layout) {
-        case ArrayLayout::global:
-          if (f == 0) std::memcpy(entry.data, array->bytes.data(), w);
+        case ArrayLayout::global:  // the same in every piece
+          if (first_read) std::memcpy(entry.data, array->bytes.data(), w);
           break;
         case ArrayLayout::point:  // owned points and ghosts alike, from their owners' values
           for (const auto& [k, i] : moves)
@@ -235,6 +255,7 @@ void restore_checkpoint(Simulation& sim, CheckpointSource& source, const std::st
   agree(comm, path, failure);
   source.first = header;  // what the caller still reads (the step, the time); the arrays are in sim now
   sim.restored();
+  return read;
 }
 
 }  // namespace peridot

@@ -41,8 +41,9 @@ struct CheckpointSource {
 CheckpointSource read_checkpoint(const std::string& path, const Simulation& sim);
 
 /// Puts the checkpoint's values into sim, after sim.initialize(): each rank reads the files one after the
-/// other and keeps its own points' values (owned and ghosts), whatever rank count wrote them. Throws
-/// InputError on every rank when the arrays or points do not fit this problem's. Collective.
-void restore_checkpoint(Simulation& sim, CheckpointSource& source, const std::string& path);
+/// other (those whose points' box, listed in the first piece, meets the box of its own points) and keeps its
+/// own points' values (owned and ghosts), whatever rank count wrote them; returns how many files this rank
+/// read. Throws InputError on every rank when the arrays or points do not fit this problem's. Collective.
+std::size_t restore_checkpoint(Simulation& sim, CheckpointSource& source, const std::string& path);
 
 }  // namespace peridot

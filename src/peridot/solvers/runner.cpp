@@ -416,6 +416,7 @@ struct Run::Impl {
   std::vector<fs::path> checkpoints;  // the newest output.checkpoint_keep this run wrote stay
   std::chrono::steady_clock::time_point last_checkpoint = std::chrono::steady_clock::now();
   std::int64_t checkpoint_step = -1;
+  std::string restored_note;  ///< for the log: what the restart read
   std::int64_t frame_step = -1, row_step = -1;  // the steps of the last frame and row written
   bool finished = false;
 
@@ -483,7 +484,9 @@ void Run::Impl::open_outputs() {
                        fmt::format("restart: '{}' is at step {}, after this deck's end (step {}); give a later end time "
                                    "or more steps", options.restart, checkpoint.first.step, sim.total_steps()));
     sim.initialize();
-    restore_checkpoint(sim, checkpoint, options.restart);
+    const std::size_t pieces = checkpoint.files.size(), read = restore_checkpoint(sim, checkpoint, options.restart);
+    restored_note = fmt::format("restart          step {} of '{}': {} file(s), at most {} read by one rank",
+                                sim.state().step, options.restart, pieces, comm.max(static_cast<double>(read)));
     checkpoint_step = frame_step = row_step = sim.state().step;
   }
   const OutputSpec& output = problem.output;
@@ -493,6 +496,7 @@ void Run::Impl::open_outputs() {
     log.open(dir / "run.log", restart);
   });
   log.line("peridot run " + problem.deck_path + (restart ? " --restart " + options.restart : ""));
+  if (!restored_note.empty()) log.line(restored_note);
   for (const Diagnostic& w : problem.warnings) log.line(w.str());
   std::istringstream setup(describe_setup(sim));
   for (std::string line; std::getline(setup, line);) log.line(line);
