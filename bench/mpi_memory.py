@@ -10,7 +10,9 @@ slowest rank (points, bonds and partition: Simulation's constructor) and the dec
 prints (owned points and ghosts per rank). n = 200 is the 8 000 000-point block of issue 25; it needs about
 6.5 GB on one rank. With --frames the deck also writes an Exodus frame at every step (3 frames: steps 0, 1, 2;
 distributed, one piece per rank) and the table adds the time to write them and their size. With --contact the
-deck turns on short-range contact (`contact: {}`: a pair-list build over the points near each rank's own).
+deck turns on short-range contact (`contact: {}`: a pair-list build over the points near each rank's own). With
+--points-file the block is read from a point file (x y z volume, one line per point, written into the work folder)
+instead of made on the lattice: each rank keeps its share of the file.
 """
 import argparse
 import os
@@ -24,7 +26,7 @@ DECK = """discretization: {{dimension: 3, spacing: 1 mm, horizon_factor: 3.015}}
 materials:
   steel: {{model: lps, density: 7800, youngs_modulus: 200 GPa, poisson_ratio: 0.3}}
 bodies:
-  block: {{material: steel, shape: {{box: {{min: [0, 0, 0], max: [{side}, {side}, {side}]}}}}}}
+  block: {{material: steel, {source}}}
 initial_conditions:
   - {{velocity: {{x: "1e-3 * x"}}}}
 {contact}solver: {{num_steps: 2}}
@@ -45,14 +47,22 @@ def main():
     p.add_argument("--ranks", default="1,2,4")
     p.add_argument("--frames", action="store_true", help="write an Exodus frame at every step")
     p.add_argument("--contact", action="store_true", help="short-range contact on")
+    p.add_argument("--points-file", action="store_true", help="the block read from a point file")
     p.add_argument("--out", default=None)
     a = p.parse_args()
     peridot = os.path.abspath(a.peridot)
     work = a.out or tempfile.mkdtemp(prefix="mpi_memory_")
     os.makedirs(work, exist_ok=True)
     deck = os.path.join(work, "block.yaml")
+    source = f"shape: {{box: {{min: [0, 0, 0], max: [{a.n * 1e-3}, {a.n * 1e-3}, {a.n * 1e-3}]}}}}"
+    if a.points_file:
+        with open(os.path.join(work, "block.txt"), "w") as f:
+            for k in range(a.n):
+                for j in range(a.n):
+                    f.write("".join(f"{(i + 0.5) * 1e-3!r} {(j + 0.5) * 1e-3!r} {(k + 0.5) * 1e-3!r} 1e-09\n" for i in range(a.n)))
+        source = "points_file: block.txt"
     with open(deck, "w") as f:
-        f.write(DECK.format(side=a.n * 1e-3, frames=", exodus: {every: 1, file: block.e}" if a.frames else "",
+        f.write(DECK.format(source=source, frames=", exodus: {every: 1, file: block.e}" if a.frames else "",
                            contact="contact: {}\n" if a.contact else ""))
     print(f"{a.n}³ = {a.n ** 3} points, LPS, δ = 3.015 Δx; work in {work}")
     print("| ranks | owned points per rank | ghosts (largest) | bonds | set-up (s) | run (s) | Exodus (MB) | peak resident per rank (MiB) | largest | sum | largest / one rank |")
