@@ -106,7 +106,7 @@ PointPacket send_points(const Communicator& comm, const PointPacket& out, const 
 }  // namespace
 
 LocalDomain decompose(const Communicator& comm, const Problem& problem, const NeighborhoodOptions& options,
-                                PartitionMethod method) {
+                      PartitionMethod method) {
   const int dim = problem.dimension, ranks = comm.size();
   const double dx = problem.spacing;
   // 1. This rank's box of the lattice (a recursive bisection weighted by the bodies' estimated site counts),
