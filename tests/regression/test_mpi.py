@@ -43,6 +43,7 @@ DECKS = [  # (deck, what it covers)
     ("tests/regression/decks/mpi_mesh_body.yaml", "a point-file body beside a lattice body: each rank keeps a share of the file"),
     ("tests/regression/decks/mpi_mesh_sets.yaml",
      "an Abaqus mesh body beside a lattice body, its node set pulling, bonds breaking: the mesh read in shares"),
+    ("tests/regression/decks/mpi_few_points.yaml", "two points on up to 4 ranks: ranks that own nothing"),
 ]
 RANKS = [1, 2, 3, 4]
 

@@ -82,7 +82,9 @@ TEST(LatticeWindows, BisectedBoxesTileTheExtentAndTogetherMakeDiscretizesPoints)
     const double mean = static_cast<double>(whole.num_points()) / ranks;
     std::printf("%d ranks: largest box %.2f, largest slab %.2f of the mean\n", ranks, largest / mean, largest_slab / mean);
     EXPECT_LE(static_cast<double>(largest), 1.7 * mean) << ranks << " ranks";
-    if (ranks > 1) EXPECT_LT(largest, largest_slab) << ranks << " ranks";
+    if (ranks > 1) {
+      EXPECT_LT(largest, largest_slab) << ranks << " ranks";
+    }
   }
 }
 

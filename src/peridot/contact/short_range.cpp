@@ -8,6 +8,7 @@
 
 #include <omp.h>
 
+#include "peridot/core/bounding_box.hpp"
 #include "peridot/core/error.hpp"
 
 namespace peridot {
@@ -127,10 +128,8 @@ void ShortRangeContact::build(const ContactCandidates& candidates, std::size_t o
   // candidates are in the 27 cells around it. Where the box holds far more cells than points (fragments flown
   // far apart), the cells are the distinct occupied ones, found by binary search.
   const double h = cutoff_;
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (std::size_t i = 0; i < n; ++i)
-    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], y[3 * i + d]), hi[d] = std::max(hi[d], y[3 * i + d]);
-  if (n == 0) lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;  // a rank without points lists nothing
+  const BoundingBox box = n == 0 ? BoundingBox{} : bounding_box(y.data(), 3, n);  // a rank without points lists nothing
+  const Vec3 lo = box.lo, hi = box.hi;
   std::int64_t span[3];
   for (int d = 0; d < 3; ++d) span[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo[d]) / h)) + 3;  // a cell of margin each side
   auto cell_of = [&](std::size_t i, int d) {

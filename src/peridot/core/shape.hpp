@@ -5,13 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "peridot/core/bounding_box.hpp"
 #include "peridot/core/vec3.hpp"
 
 namespace peridot {
-
-struct BoundingBox {
-  Vec3 lo, hi;
-};
 
 struct Shape {
   enum class Kind { box, cylinder, tube, sphere, union_of, difference };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "peridot/core/bounding_box.hpp"
+
 namespace peridot {
 
 std::vector<std::vector<std::uint32_t>> points_in_boxes(const double* coords, std::size_t stride, std::size_t n,
@@ -10,9 +12,8 @@ std::vector<std::vector<std::uint32_t>> points_in_boxes(const double* coords, st
   const std::size_t ranks = boxes.size() / 6;
   std::vector<std::vector<std::uint32_t>> inside(ranks);
   if (n == 0) return inside;
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (std::size_t k = 0; k < n; ++k)
-    for (std::size_t d = 0; d < 3; ++d) lo[d] = std::min(lo[d], coords[stride * k + d]), hi[d] = std::max(hi[d], coords[stride * k + d]);
+  const BoundingBox all = bounding_box(coords, stride, n);
+  const Vec3 lo = all.lo, hi = all.hi;
   // About eight points per cell over the axes the points span (a flat or thin set gets one cell across).
   double extent[3], volume = 1;
   int spanned = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "peridot/core/bounding_box.hpp"
 #include "peridot/parallel/box_search.hpp"
 
 namespace peridot {
@@ -10,13 +11,8 @@ namespace peridot {
 ContactCandidates gather_contact_candidates(const Communicator& comm, ContactCandidates mine, double reach) {
   if (comm.serial()) return mine;
   const std::size_t owned = mine.size();
-  double box[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};  // empty without owned points
-  for (std::size_t i = 0; i < owned; ++i)
-    for (std::size_t d = 0; d < 3; ++d) {
-      box[d] = std::min(box[d], mine.y[3 * i + d] - reach);
-      box[3 + d] = std::max(box[3 + d], mine.y[3 * i + d] + reach);
-    }
-  const std::vector<double> boxes = comm.all_gather(std::vector<double>(box, box + 6));
+  // Empty (and meeting nothing) on a rank without owned points.
+  const std::vector<double> boxes = comm.all_gather(bounding_box(mine.y.data(), 3, owned).widened(reach).six());
 
   // Rank after rank, the owned points inside its box: index, positions and volume, block.
   std::vector<std::uint32_t> send_index;

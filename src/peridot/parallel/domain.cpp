@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "peridot/core/bounding_box.hpp"
 #include "peridot/core/error.hpp"
 #include "peridot/geometry/discretize.hpp"
 #include "peridot/parallel/box_search.hpp"
@@ -249,13 +250,7 @@ LocalDomain decompose(const Communicator& comm, const Problem& problem, const Ne
   out = PointPacket{};
 
   // 4. Candidates for ghosts: every other rank's points within a reach of this rank's owned points.
-  Vec3 box_lo{1e300, 1e300, 1e300}, box_hi{-1e300, -1e300, -1e300};
-  for (std::size_t k = 0; k < owned.size(); ++k)
-    for (int d = 0; d < 3; ++d) {
-      box_lo[d] = std::min(box_lo[d], owned.reals[4 * k + d] - reach);
-      box_hi[d] = std::max(box_hi[d], owned.reals[4 * k + d] + reach);
-    }
-  const std::vector<double> boxes = comm.all_gather(std::vector<double>{box_lo.x, box_lo.y, box_lo.z, box_hi.x, box_hi.y, box_hi.z});
+  const std::vector<double> boxes = comm.all_gather(bounding_box(owned.reals.data(), 4, owned.size()).widened(reach).six());
   const std::vector<std::vector<std::uint32_t>> inside = points_in_boxes(owned.reals.data(), 4, owned.size(), boxes, comm.rank());
   for (int r = 0; r < ranks; ++r) {
     count[static_cast<std::size_t>(r)] = static_cast<int>(inside[static_cast<std::size_t>(r)].size());

@@ -86,6 +86,10 @@ std::vector<int> partition_points(const Communicator& comm, const Discretization
                                         const std::vector<std::uint32_t>& global_id,
                                         const std::vector<std::uint64_t>& weight, PartitionMethod method) {
   if (comm.serial()) return std::vector<int>(points.num_points(), 0);
+  // Fewer points than ranks: nothing to balance, and Zoltan's RCB can fail on it (status −2 for one point on
+  // two ranks, or two on four); each point stays with the rank that made it.
+  if (comm.sum(static_cast<std::uint64_t>(points.num_points())) < static_cast<std::uint64_t>(comm.size()))
+    return std::vector<int>(points.num_points(), comm.rank());
   Slice slice{&points, 0, points.num_points(), &weight, &global_id};
   return partition_slice(comm, slice, method);
 }

@@ -15,7 +15,8 @@
 namespace peridot {
 
 /// The owner rank of each of this rank's `points` (global ids and bond counts given), every rank handing
-/// Zoltan the points it made or read (domain.hpp). Collective; on one rank every point is rank 0's.
+/// Zoltan the points it made or read (domain.hpp). Collective; on one rank every point is rank 0's, and with
+/// fewer points than ranks every point stays where it was made.
 std::vector<int> partition_points(const Communicator& comm, const Discretization& points,
                                         const std::vector<std::uint32_t>& global_id,
                                         const std::vector<std::uint64_t>& weight, PartitionMethod method);

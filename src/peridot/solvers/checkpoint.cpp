@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "peridot/core/bounding_box.hpp"
 #include "peridot/deck/deck.hpp"
 #include "peridot/output/exodus_pieces.hpp"
 #include "peridot/version.hpp"
@@ -42,15 +43,7 @@ std::string first_difference(const std::string& written, const std::string& now)
 }
 
 /// The box of the first n points' reference positions: lo x, y, z, hi x, y, z (no point: lo above hi).
-std::vector<double> reference_box(const Discretization& disc, std::size_t n) {
-  std::vector<double> box{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t d = 0; d < 3; ++d) {
-      box[d] = std::min(box[d], disc.x(i, static_cast<int>(d)));
-      box[3 + d] = std::max(box[3 + d], disc.x(i, static_cast<int>(d)));
-    }
-  return box;
-}
+std::vector<double> reference_box(const Discretization& disc, std::size_t n) { return bounding_box(disc.x.data(), 3, n).six(); }
 
 std::uint32_t global_of(const Simulation& sim, std::size_t i) {
   return sim.communicator().serial() ? static_cast<std::uint32_t>(i) : sim.global_index()[i];

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "peridot/core/bounding_box.hpp"
 #include "peridot/deck/map_reader.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/simulation.hpp"
@@ -268,12 +269,9 @@ std::string QuasiStatic::free_rigid_motion() {
   // The rigid motions of the deck's dimension: translations along its axes, rotations about the axes
   // perpendicular to its plane (2D: about z; 1D: none), measured from the centre of the bodies' box, per its size.
   const int modes = dimension == 3 ? 6 : dimension == 2 ? 3 : 1;
+  const BoundingBox mine = bounding_box(disc.x.data(), 3, owned);
   double low[3], high[3];
-  for (int d = 0; d < 3; ++d) {
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (std::size_t i = 0; i < owned; ++i) lo = std::min(lo, disc.x.data()[3 * i + d]), hi = std::max(hi, disc.x.data()[3 * i + d]);
-    low[d] = comm.min(lo), high[d] = comm.max(hi);
-  }
+  for (int d = 0; d < 3; ++d) low[d] = comm.min(mine.lo[d]), high[d] = comm.max(mine.hi[d]);
   if (!(high[0] >= low[0])) return {};
   double centre[3], size = 0;
   for (int d = 0; d < 3; ++d) centre[d] = 0.5 * (low[d] + high[d]), size = std::max(size, high[d] - low[d]);

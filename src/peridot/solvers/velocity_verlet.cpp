@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "peridot/core/bounding_box.hpp"
 #include "peridot/solvers/simulation.hpp"
 
 // KeySpecs are written with designated initializers that leave the other fields at their defaults on
@@ -40,6 +41,8 @@ SolverInfo VelocityVerlet::info() {
 TimeIntegrator::Schedule VelocityVerlet::schedule(const SolverSpec& solver, double stable_time_step) {
   const Parameters& q = solver.parameters;
   Schedule s;
+  if (!q.has("time_step") && !std::isfinite(stable_time_step))
+    throw InputError(solver.pos, "solver: no point has a bond, so the stable time step is unbounded; give solver.time_step");
   s.time_step = q.has("time_step") ? q.number("time_step") : q.number("safety_factor") * stable_time_step;
   if (q.has("end_time")) {
     // Whole steps that end exactly at end_time, none longer than the chosen Δt.
@@ -63,12 +66,10 @@ VelocityVerlet::VelocityVerlet(Simulation& sim) : sim_(sim), damping_(sim.proble
   // The whole problem's extent (exact minima and maxima over the ranks): the same limit everywhere.
   const Discretization& mine = sim.discretization();
   const Communicator& comm = sim.communicator();
+  const BoundingBox box = bounding_box(mine.x.data(), 3, sim.num_owned());
   double extent = 0;
   for (int d = 0; d < 3; ++d) {
-    double lo = INFINITY, hi = -INFINITY;
-    for (std::size_t i = 0; i < sim.num_owned(); ++i) lo = std::min(lo, mine.x(i, d)), hi = std::max(hi, mine.x(i, d));
-    lo = comm.min(lo);
-    hi = comm.max(hi);
+    const double lo = comm.min(box.lo[d]), hi = comm.max(box.hi[d]);
     if (hi >= lo) extent = std::max(extent, hi - lo);
   }
   double horizon = 0;
