@@ -950,7 +950,7 @@ Problem parse_deck(const std::string& yaml_text, const std::string& file_name_fo
   }
   if (!overrides.empty() && !root.IsDefined()) root = YAML::Node(YAML::NodeType::Map);
   for (const DeckOverride& set : overrides) apply_override(root, set, file_name_for_messages);
-  Parser{ctx, problem.deck_dir, problem}.parse(root);
+  Parser{ctx, problem.deck_dir, problem, std::nullopt, SourcePos{}}.parse(root);
   sort_by_position(ctx.errors());
   if (!ctx.errors().empty()) throw InputError(std::move(ctx.errors()));
   sort_by_position(ctx.warnings());

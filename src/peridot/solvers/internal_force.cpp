@@ -1304,7 +1304,9 @@ double stable_time_step(const ModelContext& ctx) {
       dt = std::min(dt, dt_i);
     }
   }
-  return dt;
+  // OpenMP starts each thread's min at the largest finite double (clang) or at +∞ (GCC): no bond anywhere is
+  // +∞ with either.
+  return dt < std::numeric_limits<double>::max() ? dt : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace peridot
