@@ -9,9 +9,7 @@
 namespace peridot {
 
 struct BoundingBox {
-  Vec3 lo, hi;
-  /// Nothing inside: lo above hi on some axis (the box of no points has lo = +∞ and hi = −∞).
-  bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
+  Vec3 lo, hi;  ///< the box of no points has lo = +∞ and hi = −∞: it meets nothing
   /// Grown by r on every side; an empty box stays empty.
   BoundingBox widened(double r) const { return {lo - Vec3{r, r, r}, hi + Vec3{r, r, r}}; }
   /// lo x, y, z, hi x, y, z: the form exchanged between ranks and kept in checkpoints.
