@@ -3,10 +3,11 @@
 end_time or step count replaced by a short step count, a relaxation's tolerance loosened and its load steps cut to the first 4
 when it has more than 16, so that CI stays short; every other line as shipped) on 1, 2, 3 and 4 ranks (under
 mpirun, oversubscribed) give every byte of the Exodus file (the ranks' pieces merged by `peridot join`) and the
-history of a serial run (griffith_crack's deck only when named or with --full: LONG_DECKS). The implicit solver's decks run as shipped: on one rank they give the serial bytes, on
-2–4 ranks PETSc's reductions and preconditioner follow the partition (docs/algorithms.md §18), so every Exodus
-result and the history's energies and reactions are compared within 1e-8 of the largest value instead, and the
-broken-bond counts exactly. `--full` runs the decks as shipped instead (on demand: hours on 2 cores for every deck),
+history of a serial run (griffith_crack's deck only when named or with --full: LONG_DECKS). The implicit
+solver's decks run as shipped: on one rank they give the serial bytes; on 2–4 ranks PETSc's reductions and
+preconditioner follow the partition (docs/algorithms.md §18), so every Exodus result and the history's energies
+and reactions are compared within 1e-8 of the largest value instead, and the broken-bond counts exactly.
+`--full` runs the decks as shipped instead (on demand: hours on 2 cores for every deck),
 with `--decks NAME,...` (example folder or folder_deck names) and `--ranks 3,4` to pick; the full-length runs
 done are listed in docs/parallel.md."""
 import argparse
