@@ -1,4 +1,4 @@
-// Each bond once or twice? The PMB force of the benchmark block (bench_explicit's problem: a simple-cubic
+// Each bond once or twice? The PMB force of the benchmark block (bench/benchmark_problem.hpp: a simple-cubic
 // block, horizon 3.015 spacings, 122 bonds per interior point, points in the space-filling-curve order of a
 // run) by three plain loops, written alike and compiled alike (no hand-written vectors), one thread:
 //
@@ -24,45 +24,13 @@
 #include <string>
 #include <vector>
 
-#include "peridot/deck/model_schema.hpp"
-#include "peridot/deck/solver_schema.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/simulation.hpp"
+#include "benchmark_problem.hpp"
 
 namespace {
 
 using namespace peridot;
-
-Problem block(const int n[3], double spacing) {
-  Problem p;
-  p.deck_path = "<bench>";
-  p.dimension = 3;
-  p.spacing = spacing;
-  p.lattice_origin = {-0.5 * spacing, -0.5 * spacing, -0.5 * spacing};
-  p.partial_volume = PartialVolumeKind::horizon;
-  const double E = 200e9, nu = 0.25;
-  MaterialSpec m;
-  m.name = "steel";
-  m.model = "pmb";
-  m.influence = InfluenceKind::constant;
-  m.density = 7800;
-  m.elastic = {E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)), E, nu};
-  p.materials = {m};
-  BodySpec b;
-  b.name = "block";
-  b.material = "steel";
-  Shape box;
-  box.kind = Shape::Kind::box;
-  box.lo = {-0.5 * spacing, -0.5 * spacing, -0.5 * spacing};
-  box.hi = {(n[0] - 0.5) * spacing, (n[1] - 0.5) * spacing, (n[2] - 0.5) * spacing};
-  b.shape = box;
-  b.horizon = 3.015 * spacing;
-  p.bodies = {b};
-  p.solver.parameters = complete_parameters(find_solver("explicit")->keys, {});
-  p.solver.parameters.set_integer("num_steps", 1);
-  p.output.progress = false;
-  return p;
-}
 
 struct Block {
   std::size_t n = 0;
@@ -159,7 +127,11 @@ int main(int argc, char** argv) {
   }
   MpiSession mpi(argc, argv);
   const double spacing = 1e-3;
-  Simulation sim(block(n, spacing));
+  bench::Options o;  // PMB, the constant influence
+  for (int d = 0; d < 3; ++d) o.n[d] = n[d];
+  o.spacing = spacing;
+  o.steps = 1;
+  Simulation sim(bench::benchmark_problem(o));
   const Discretization& disc = sim.discretization();
   const BondList& bonds = sim.bonds();
   Block k;

@@ -82,6 +82,8 @@ def main():
     p.add_argument("--decks", default="", help="only these (comma-separated example or example_deck names)")
     p.add_argument("--ranks", default=",".join(map(str, RANKS)))
     p.add_argument("--timeout", type=float, default=900, help="seconds per run")
+    p.add_argument("--serial-threads", type=int, default=1,
+                   help="OpenMP threads of the serial reference run (its bits do not depend on them)")
     a = p.parse_args()
     ranks_list = tuple(int(r) for r in a.ranks.split(","))
     wanted = [d for d in a.decks.split(",") if d]
@@ -128,7 +130,8 @@ def main():
             cmd = [a.peridot, "run", "-q", "-o", out, path]
             if ranks:
                 cmd = [a.mpirun, "--oversubscribe", "-np", str(ranks)] + cmd
-            r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=a.timeout)
+            run_env = env if ranks else dict(env, OMP_NUM_THREADS=str(a.serial_threads))
+            r = subprocess.run(cmd, capture_output=True, text=True, env=run_env, timeout=a.timeout)
             check(r.returncode == 0, f"{name}: {'serial' if ranks is None else f'{ranks} ranks'} run" +
                   ("" if r.returncode == 0 else "\n" + r.stdout + r.stderr))
             if ranks and ranks > 1 and r.returncode == 0:
