@@ -1,6 +1,6 @@
 // Each bond once or twice? The PMB force of the benchmark block (bench/benchmark_problem.hpp: a simple-cubic
 // block, horizon 3.015 spacings, 122 bonds per interior point, points in the space-filling-curve order of a
-// run) by three plain loops, written alike and compiled alike (no hand-written vectors), one thread:
+// run), one thread, by three loops in two forms each:
 //
 //   gather   every directed bond i → j evaluated, its force added to i only: each bond computed twice,
 //            f written once per point (what Peridot's loops do; 4 B of neighbour index per directed bond);
@@ -11,11 +11,26 @@
 //            bonds' entries in its CSR order (4 B of pair index per directed bond): deterministic for any
 //            thread count by construction, 16 B per directed bond more than gather.
 //
-// Prints one JSON line: directed bonds, seconds per pass (best of --repeat), directed-bond updates per
-// second, bytes per directed bond of each, and the largest difference of the three forces (relative to the
-// largest force). Measures the options the performance issue asks for before any is built into the loops.
+// The plain forms are C++ loops written alike (GCC vectorises none of them for the baseline); the vector
+// forms are the same three in Highway's vectors with the production loops' building blocks
+// (core/simd_bonds.hpp: partners' records loaded whole and transposed, AVX-512's 1/√x estimate), compiled
+// for every SIMD target and run on the best one (PERIDOT_SIMD forces one), a group of bonds per lane count.
+// The vector gather is the production PMB loop's arithmetic (constant influence, uniform volume).
 //
-//   bond_once --n 37 37 37 [--repeat 20]
+// Prints one JSON line: directed bonds, seconds per pass (best of --repeat; --clock cpu takes the thread's
+// CPU time instead of the wall clock, for a machine that is busy with something else), directed-bond
+// updates per second, bytes per directed bond of each, and the largest difference of the forces from the
+// gather of the same form (relative to the largest force), and how many components of the buffer's forces
+// differ from that gather's at all. Measures the options the performance issue asks for before any is built
+// into the production loops.
+//
+//   bond_once --n 37 37 37 [--repeat 20] [--clock wall|cpu]
+#include <time.h>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>  // before the per-target code: the standard headers are compiled for the baseline only
+#endif
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,6 +39,16 @@
 #include <string>
 #include <vector>
 
+// The vector forms are compiled once per SIMD target: Highway's foreach_target includes this file again
+// for each (core/simd.hpp); the rest is compiled once.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "bond_once.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+#ifndef PERIDOT_BOND_ONCE_SHARED
+#define PERIDOT_BOND_ONCE_SHARED
+#include "peridot/core/simd.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/simulation.hpp"
 #include "benchmark_problem.hpp"
@@ -41,6 +66,7 @@ struct Block {
   std::vector<std::uint32_t> upper_neighbors;
   std::vector<std::uint32_t> pair_of;  // per directed bond: its bond pair (the upper bond's place)
   double c = 0;                        // micromodulus
+  double uniform_volume = 0;           // V of every point (a lattice block): the vector forms broadcast it
 };
 
 // f_i += c s V_j y/|y| for the bond i → j (the constant influence; s = (|y| − |ξ|)/|ξ|).
@@ -101,27 +127,213 @@ void buffered(const Block& k, double* f, std::vector<double>& pair_force) {
   }
 }
 
+}  // namespace
+#endif  // PERIDOT_BOND_ONCE_SHARED
+
+HWY_BEFORE_NAMESPACE();
+#include "peridot/core/simd_bonds.hpp"
+PERIDOT_SIMD_BONDS_BEGIN
+namespace peridot::HWY_NAMESPACE {
+namespace {
+
+namespace hn = hwy::HWY_NAMESPACE;
+namespace sb = simd_bonds;
+using D = sb::D;
+using V = sb::V;
+using M = sb::M;
+
+/// The forces on i of a group of its bonds (neighbours j, lanes `lanes`), c V e/(|ξ||Y|) along Y: the
+/// production PMB loop's arithmetic for the constant influence and a uniform volume. From the other end
+/// the same operations give exactly the negated force (ξ and u_j − u_i are negated exactly).
+[[gnu::always_inline]] inline void group_force(D d, const Block& k, const V xi[3], const V ui[3], V cv,
+                                               const std::uint32_t* j, M lanes, V g[3]) {
+  V dx[3], du[3], dy[3];
+  sb::load_vec3(d, k.x.data(), j, dx);
+  sb::load_vec3(d, k.u.data(), j, du);
+  for (int c = 0; c < 3; ++c) dx[c] = dx[c] - xi[c], du[c] = du[c] - ui[c], dy[c] = dx[c] + du[c];
+  const V xi2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+  const V y2 = dy[0] * dy[0] + dy[1] * dy[1] + dy[2] * dy[2];
+  V r, l, inverse_product;
+  sb::lengths(d, xi2, y2, r, l, inverse_product);
+  const V scale = hn::IfThenElseZero(lanes, (cv * inverse_product) * (l - r));
+  for (int c = 0; c < 3; ++c) g[c] = scale * dy[c];
+}
+
+struct PointOf {
+  V x[3], u[3];
+  PointOf(D d, const Block& k, std::size_t i) {
+    for (int c = 0; c < 3; ++c) x[c] = hn::Set(d, k.x[3 * i + c]), u[c] = hn::Set(d, k.u[3 * i + c]);
+  }
+};
+
+void gather_vector(const Block& k, double* f) {
+  const D d;
+  const std::uint64_t n = hn::Lanes(d);
+  const V cv = hn::Set(d, k.c * k.uniform_volume);
+  std::uint32_t tail[sb::max_lanes];
+  for (std::size_t i = 0; i < k.n; ++i) {
+    const PointOf p(d, k, i);
+    const std::uint32_t* family = k.neighbors.data() + k.offsets[i];
+    const std::uint64_t count = k.offsets[i + 1] - k.offsets[i];
+    V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    for (std::uint64_t b = 0; b < count; b += n) {
+      const std::uint32_t* j;
+      const M lanes = sb::group_lanes(d, family, b, count, tail, j);
+      V g[3];
+      group_force(d, k, p.x, p.u, cv, j, lanes, g);
+      for (int c = 0; c < 3; ++c) sum[c] = sum[c] + g[c];
+    }
+    for (int c = 0; c < 3; ++c) f[3 * i + c] = sb::sum_lanes(d, sum[c]);
+  }
+}
+
+void scatter_vector(const Block& k, double* f) {
+  const D d;
+  const std::uint64_t n = hn::Lanes(d);
+  const V cv = hn::Set(d, k.c * k.uniform_volume);
+  std::uint32_t tail[sb::max_lanes];
+  HWY_ALIGN double partner[3][sb::max_lanes];
+  std::fill(f, f + 3 * k.n, 0.0);
+  for (std::size_t i = 0; i < k.n; ++i) {
+    const PointOf p(d, k, i);
+    const std::uint32_t* upper = k.upper_neighbors.data() + k.upper_offsets[i];
+    const std::uint64_t count = k.upper_offsets[i + 1] - k.upper_offsets[i];
+    V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    for (std::uint64_t b = 0; b < count; b += n) {
+      const std::uint32_t* j;
+      const M lanes = sb::group_lanes(d, upper, b, count, tail, j);
+      V g[3], fj[3];
+      group_force(d, k, p.x, p.u, cv, j, lanes, g);
+      sb::load_vec3(d, f, j, fj);  // the partners of one point are distinct: no lane overwrites another's
+      for (int c = 0; c < 3; ++c) sum[c] = sum[c] + g[c], fj[c] = fj[c] - g[c];
+      // Stored lane by lane (the last partial group's lanes past the list repeat a partner): AVX-512's
+      // scatter instruction made this form 10-20 % slower on AMD Zen 4.
+      for (int c = 0; c < 3; ++c) hn::Store(fj[c], d, partner[c]);
+      for (std::uint64_t q = 0; q < std::min(n, count - b); ++q)
+        for (int c = 0; c < 3; ++c) f[3 * static_cast<std::uint64_t>(j[q]) + c] = partner[c][q];
+    }
+    for (int c = 0; c < 3; ++c) f[3 * i + c] += sb::sum_lanes(d, sum[c]);
+  }
+}
+
+/// pair_force: 3 doubles per bond pair, x y z, as the points' records: written with an interleaved store and
+/// read back with the transposed record load of x and u (three gathers per group instead ran at 0.44–0.85 of
+/// the vector gather on AMD Zen 4).
+void buffer_vector(const Block& k, double* f, double* pair_force) {
+  const D d;
+  const hn::RebindToSigned<D> di;
+  const hn::Rebind<std::uint32_t, D> d32;
+  const std::uint64_t n = hn::Lanes(d);
+  const V cv = hn::Set(d, k.c * k.uniform_volume);
+  std::uint32_t tail[sb::max_lanes];
+  HWY_ALIGN double last[3 * sb::max_lanes];
+  for (std::size_t i = 0; i < k.n; ++i) {  // each pair once, from its smaller end, stored in pair order
+    const PointOf p(d, k, i);
+    const std::uint64_t first = k.upper_offsets[i], count = k.upper_offsets[i + 1] - first;
+    for (std::uint64_t b = 0; b < count; b += n) {
+      const std::uint32_t* j;
+      const M lanes = sb::group_lanes(d, k.upper_neighbors.data() + first, b, count, tail, j);
+      V g[3];
+      group_force(d, k, p.x, p.u, cv, j, lanes, g);
+      double* out = pair_force + 3 * (first + b);
+      if (b + n <= count) {
+        hn::StoreInterleaved3(g[0], g[1], g[2], d, out);
+      } else {  // the last partial group: only its own pairs (the next point's may be another thread's)
+        hn::StoreInterleaved3(g[0], g[1], g[2], d, last);
+        std::copy(last, last + 3 * (count - b), out);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < k.n; ++i) {  // each point sums its bonds' pair forces in its CSR order
+    const std::uint32_t* family = k.neighbors.data() + k.offsets[i];
+    const std::uint32_t* pairs = k.pair_of.data() + k.offsets[i];
+    const std::uint64_t count = k.offsets[i + 1] - k.offsets[i];
+    const auto me = hn::Set(di, static_cast<std::int64_t>(i));
+    V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    for (std::uint64_t b = 0; b < count; b += n) {
+      const std::uint32_t* j;
+      std::uint32_t pair_tail[sb::max_lanes];
+      const std::uint32_t* pair;
+      const M lanes = sb::group_lanes(d, family, b, count, tail, j);
+      sb::group_lanes(d, pairs, b, count, pair_tail, pair);
+      // The pair's force was computed from its smaller end: negated where the partner is the smaller.
+      const M lower = hn::RebindMask(d, hn::Lt(hn::BitCast(di, hn::PromoteTo(hn::RebindToUnsigned<D>(), hn::LoadU(d32, j))), me));
+      V g[3];
+      sb::load_vec3(d, pair_force, pair, g);
+      for (int c = 0; c < 3; ++c) {
+        const V term = hn::IfThenElseZero(lanes, g[c]);
+        sum[c] = sum[c] + hn::IfThenElse(lower, hn::Neg(term), term);
+      }
+    }
+    for (int c = 0; c < 3; ++c) f[3 * i + c] = sb::sum_lanes(d, sum[c]);
+  }
+}
+
+}  // namespace
+}  // namespace peridot::HWY_NAMESPACE
+PERIDOT_SIMD_BONDS_END
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace peridot {
+HWY_EXPORT(gather_vector);
+HWY_EXPORT(scatter_vector);
+HWY_EXPORT(buffer_vector);
+}  // namespace peridot
+
+namespace {
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// The shortest of `repeat` passes, by the wall clock or by this thread's CPU time.
 template <class Pass>
-double best_seconds(int repeat, Pass&& pass) {
+double best_seconds(int repeat, bool cpu_clock, Pass&& pass) {
   double best = 1e300;
   for (int r = 0; r < repeat; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = thread_cpu_seconds();
     pass();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    best = std::min(best, cpu_clock ? thread_cpu_seconds() - c0 : wall);
   }
   return best;
+}
+
+/// Largest |a − b| relative to the largest |b|, and how many components differ at all.
+struct Difference {
+  double relative = 0;
+  std::size_t unequal = 0;
+};
+
+Difference difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double largest = 0, worst = 0;
+  Difference out;
+  for (std::size_t q = 0; q < a.size(); ++q) {
+    out.unequal += a[q] != b[q];
+    largest = std::max(largest, std::abs(b[q]));
+    worst = std::max(worst, std::abs(a[q] - b[q]));
+  }
+  out.relative = worst / largest;
+  return out;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   int n[3] = {37, 37, 37}, repeat = 20;
+  bool cpu_clock = false;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--n" && a + 3 < argc) for (int d = 0; d < 3; ++d) n[d] = std::stoi(argv[++a]);
     else if (arg == "--repeat" && a + 1 < argc) repeat = std::stoi(argv[++a]);
+    else if (arg == "--clock" && a + 1 < argc && (std::string(argv[a + 1]) == "cpu" || std::string(argv[a + 1]) == "wall"))
+      cpu_clock = std::string(argv[++a]) == "cpu";
     else {
-      std::fprintf(stderr, "usage: bond_once [--n NX NY NZ] [--repeat R]\n");
+      std::fprintf(stderr, "usage: bond_once [--n NX NY NZ] [--repeat R] [--clock wall|cpu]\n");
       return 2;
     }
   }
@@ -163,26 +375,48 @@ int main(int argc, char** argv) {
       k.pair_of[b] = static_cast<std::uint32_t>(std::find(first, last, static_cast<std::uint32_t>(hi)) - k.upper_neighbors.begin());
     }
 
+  k.uniform_volume = k.volume.front();
+  for (double v : k.volume)
+    if (v != k.uniform_volume) {
+      std::fprintf(stderr, "bond_once: the block's volumes are not uniform\n");
+      return 1;
+    }
+
   const double directed = static_cast<double>(k.neighbors.size());
-  std::vector<double> f_gather(3 * k.n), f_scatter(3 * k.n), f_buffer(3 * k.n), pair_force(3 * k.upper_neighbors.size());
-  const double t_gather = best_seconds(repeat, [&] { gather(k, f_gather.data()); });
-  const double t_scatter = best_seconds(repeat, [&] { scatter(k, f_scatter.data()); });
-  const double t_buffer = best_seconds(repeat, [&] { buffered(k, f_buffer.data(), pair_force); });
-  double largest = 0, diff_scatter = 0, diff_buffer = 0;
-  std::size_t unequal_buffer = 0;
-  for (std::size_t q = 0; q < 3 * k.n; ++q) {
-    unequal_buffer += f_buffer[q] != f_gather[q];
-    largest = std::max(largest, std::abs(f_gather[q]));
-    diff_scatter = std::max(diff_scatter, std::abs(f_scatter[q] - f_gather[q]));
-    diff_buffer = std::max(diff_buffer, std::abs(f_buffer[q] - f_gather[q]));
-  }
-  std::printf(
-      "{\"points\": %zu, \"directed_bonds\": %.0f, \"repeat\": %d, "
-      "\"gather\": {\"s\": %.5f, \"bond_updates_per_s\": %.4g, \"bytes_per_bond\": 4}, "
-      "\"scatter\": {\"s\": %.5f, \"bond_updates_per_s\": %.4g, \"bytes_per_bond\": 2, \"vs_gather\": %.3f}, "
-      "\"buffer\": {\"s\": %.5f, \"bond_updates_per_s\": %.4g, \"bytes_per_bond\": 20, \"vs_gather\": %.3f}, "
-      "\"largest_difference_scatter\": %.3g, \"largest_difference_buffer\": %.3g, \"buffer_components_unequal_to_gather\": %zu}\n",
-      k.n, directed, repeat, t_gather, directed / t_gather, t_scatter, directed / t_scatter, t_gather / t_scatter,
-      t_buffer, directed / t_buffer, t_gather / t_buffer, diff_scatter / largest, diff_buffer / largest, unequal_buffer);
+  const std::size_t pairs = k.upper_neighbors.size();
+  std::vector<double> f_gather(3 * k.n), f_scatter(3 * k.n), f_buffer(3 * k.n), pair_force(3 * pairs);
+  std::vector<double> v_gather(3 * k.n), v_scatter(3 * k.n), v_buffer(3 * k.n);
+  std::vector<double> pair_records(3 * pairs);
+  simd::apply_environment();
+  double t[6];
+  t[0] = best_seconds(repeat, cpu_clock, [&] { gather(k, f_gather.data()); });
+  t[1] = best_seconds(repeat, cpu_clock, [&] { scatter(k, f_scatter.data()); });
+  t[2] = best_seconds(repeat, cpu_clock, [&] { buffered(k, f_buffer.data(), pair_force); });
+  t[3] = best_seconds(repeat, cpu_clock, [&] { HWY_DYNAMIC_DISPATCH(gather_vector)(k, v_gather.data()); });
+  t[4] = best_seconds(repeat, cpu_clock, [&] { HWY_DYNAMIC_DISPATCH(scatter_vector)(k, v_scatter.data()); });
+  t[5] = best_seconds(repeat, cpu_clock, [&] { HWY_DYNAMIC_DISPATCH(buffer_vector)(k, v_buffer.data(), pair_records.data()); });
+  const Difference plain_scatter = difference(f_scatter, f_gather), plain_buffer = difference(f_buffer, f_gather);
+  const Difference vector_scatter = difference(v_scatter, v_gather), vector_buffer = difference(v_buffer, v_gather);
+  const Difference vector_plain = difference(v_gather, f_gather);
+  auto form = [&](const char* name, double s, int bytes, double gather_s, const Difference* from_gather) {
+    std::printf("\"%s\": {\"s\": %.5f, \"bond_updates_per_s\": %.4g, \"bytes_per_bond\": %d", name, s, directed / s, bytes);
+    if (from_gather)
+      std::printf(", \"vs_gather\": %.3f, \"largest_difference\": %.3g, \"components_unequal_to_gather\": %zu",
+                  gather_s / s, from_gather->relative, from_gather->unequal);
+    std::printf("}, ");
+  };
+  std::printf("{\"points\": %zu, \"directed_bonds\": %.0f, \"repeat\": %d, \"clock\": \"%s\", \"simd\": \"%s\", ", k.n,
+              directed, repeat, cpu_clock ? "cpu" : "wall", simd::active_target().c_str());
+  std::printf("\"plain\": {");
+  form("gather", t[0], 4, t[0], nullptr);
+  form("scatter", t[1], 2, t[0], &plain_scatter);
+  form("buffer", t[2], 20, t[0], &plain_buffer);
+  std::printf("\"end\": 0}, \"vector\": {");
+  form("gather", t[3], 4, t[3], nullptr);
+  form("scatter", t[4], 2, t[3], &vector_scatter);
+  form("buffer", t[5], 20, t[3], &vector_buffer);
+  std::printf("\"vs_plain_gather\": %.3f, \"largest_difference_from_plain\": %.3g}}\n", t[0] / t[3], vector_plain.relative);
   return 0;
 }
+
+#endif  // HWY_ONCE
