@@ -166,23 +166,32 @@ struct PointOf {
   }
 };
 
-void gather_vector(const Block& k, double* f) {
-  const D d;
+/// Runs body(g, j, lanes, b) for the groups of point i's bonds in `list` (count of them): g the forces on i
+/// of the group starting at bond b, j its neighbours, lanes those inside the list.
+template <class Body>
+[[gnu::always_inline]] inline void for_each_group(D d, const Block& k, std::size_t i, const std::uint32_t* list,
+                                                  std::uint64_t count, Body&& body) {
   const std::uint64_t n = hn::Lanes(d);
   const V cv = hn::Set(d, k.c * k.uniform_volume);
+  const PointOf p(d, k, i);
   std::uint32_t tail[sb::max_lanes];
+  for (std::uint64_t b = 0; b < count; b += n) {
+    const std::uint32_t* j;
+    const M lanes = sb::group_lanes(d, list, b, count, tail, j);
+    V g[3];
+    group_force(d, k, p.x, p.u, cv, j, lanes, g);
+    body(g, j, lanes, b);
+  }
+}
+
+void gather_vector(const Block& k, double* f) {
+  const D d;
   for (std::size_t i = 0; i < k.n; ++i) {
-    const PointOf p(d, k, i);
-    const std::uint32_t* family = k.neighbors.data() + k.offsets[i];
-    const std::uint64_t count = k.offsets[i + 1] - k.offsets[i];
     V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
-    for (std::uint64_t b = 0; b < count; b += n) {
-      const std::uint32_t* j;
-      const M lanes = sb::group_lanes(d, family, b, count, tail, j);
-      V g[3];
-      group_force(d, k, p.x, p.u, cv, j, lanes, g);
-      for (int c = 0; c < 3; ++c) sum[c] = sum[c] + g[c];
-    }
+    for_each_group(d, k, i, k.neighbors.data() + k.offsets[i], k.offsets[i + 1] - k.offsets[i],
+                   [&](const V g[3], const std::uint32_t*, M, std::uint64_t) {
+                     for (int c = 0; c < 3; ++c) sum[c] = sum[c] + g[c];
+                   });
     for (int c = 0; c < 3; ++c) f[3 * i + c] = sb::sum_lanes(d, sum[c]);
   }
 }
@@ -190,20 +199,14 @@ void gather_vector(const Block& k, double* f) {
 void scatter_vector(const Block& k, double* f) {
   const D d;
   const std::uint64_t n = hn::Lanes(d);
-  const V cv = hn::Set(d, k.c * k.uniform_volume);
-  std::uint32_t tail[sb::max_lanes];
   HWY_ALIGN double partner[3][sb::max_lanes];
   std::fill(f, f + 3 * k.n, 0.0);
   for (std::size_t i = 0; i < k.n; ++i) {
-    const PointOf p(d, k, i);
-    const std::uint32_t* upper = k.upper_neighbors.data() + k.upper_offsets[i];
     const std::uint64_t count = k.upper_offsets[i + 1] - k.upper_offsets[i];
     V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
-    for (std::uint64_t b = 0; b < count; b += n) {
-      const std::uint32_t* j;
-      const M lanes = sb::group_lanes(d, upper, b, count, tail, j);
-      V g[3], fj[3];
-      group_force(d, k, p.x, p.u, cv, j, lanes, g);
+    for_each_group(d, k, i, k.upper_neighbors.data() + k.upper_offsets[i], count,
+                   [&](const V g[3], const std::uint32_t* j, M, std::uint64_t b) {
+      V fj[3];
       sb::load_vec3(d, f, j, fj);  // the partners of one point are distinct: no lane overwrites another's
       for (int c = 0; c < 3; ++c) sum[c] = sum[c] + g[c], fj[c] = fj[c] - g[c];
       // Stored lane by lane (the last partial group's lanes past the list repeat a partner): AVX-512's
@@ -211,7 +214,7 @@ void scatter_vector(const Block& k, double* f) {
       for (int c = 0; c < 3; ++c) hn::Store(fj[c], d, partner[c]);
       for (std::uint64_t q = 0; q < std::min(n, count - b); ++q)
         for (int c = 0; c < 3; ++c) f[3 * static_cast<std::uint64_t>(j[q]) + c] = partner[c][q];
-    }
+    });
     for (int c = 0; c < 3; ++c) f[3 * i + c] += sb::sum_lanes(d, sum[c]);
   }
 }
@@ -224,17 +227,12 @@ void buffer_vector(const Block& k, double* f, double* pair_force) {
   const hn::RebindToSigned<D> di;
   const hn::Rebind<std::uint32_t, D> d32;
   const std::uint64_t n = hn::Lanes(d);
-  const V cv = hn::Set(d, k.c * k.uniform_volume);
   std::uint32_t tail[sb::max_lanes];
   HWY_ALIGN double last[3 * sb::max_lanes];
   for (std::size_t i = 0; i < k.n; ++i) {  // each pair once, from its smaller end, stored in pair order
-    const PointOf p(d, k, i);
     const std::uint64_t first = k.upper_offsets[i], count = k.upper_offsets[i + 1] - first;
-    for (std::uint64_t b = 0; b < count; b += n) {
-      const std::uint32_t* j;
-      const M lanes = sb::group_lanes(d, k.upper_neighbors.data() + first, b, count, tail, j);
-      V g[3];
-      group_force(d, k, p.x, p.u, cv, j, lanes, g);
+    for_each_group(d, k, i, k.upper_neighbors.data() + first, count,
+                   [&](const V g[3], const std::uint32_t*, M, std::uint64_t b) {
       double* out = pair_force + 3 * (first + b);
       if (b + n <= count) {
         hn::StoreInterleaved3(g[0], g[1], g[2], d, out);
@@ -242,7 +240,7 @@ void buffer_vector(const Block& k, double* f, double* pair_force) {
         hn::StoreInterleaved3(g[0], g[1], g[2], d, last);
         std::copy(last, last + 3 * (count - b), out);
       }
-    }
+    });
   }
   for (std::size_t i = 0; i < k.n; ++i) {  // each point sums its bonds' pair forces in its CSR order
     const std::uint32_t* family = k.neighbors.data() + k.offsets[i];
