@@ -15,7 +15,10 @@
 // forms are the same three in Highway's vectors with the production loops' building blocks
 // (core/simd_bonds.hpp: partners' records loaded whole and transposed, AVX-512's 1/√x estimate), compiled
 // for every SIMD target and run on the best one (PERIDOT_SIMD forces one), a group of bonds per lane count.
-// The vector gather is the production PMB loop's arithmetic (constant influence, uniform volume).
+// The vector gather is the production PMB loop's arithmetic (constant influence, uniform volume). LPS
+// (ω = δ/|ξ|, the dilatation pass and the force pass, the production loops' arithmetic) is timed in the
+// vector gather and scatter forms: each bond once then adds e to both ends' dilatation sums and the force to
+// both ends.
 //
 // Prints one JSON line: directed bonds, seconds per pass (best of --repeat; --clock cpu takes the thread's
 // CPU time instead of the wall clock, for a machine that is busy with something else), directed-bond
@@ -24,7 +27,7 @@
 // differ from that gather's at all. Measures the options the performance issue asks for before any is built
 // into the production loops.
 //
-//   bond_once --n 37 37 37 [--repeat 20] [--clock wall|cpu]
+//   [PERIDOT_SIMD=avx2] bond_once --n 37 37 37 [--repeat 20] [--clock wall|cpu]
 #include <time.h>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -67,6 +70,10 @@ struct Block {
   std::vector<std::uint32_t> pair_of;  // per directed bond: its bond pair (the upper bond's place)
   double c = 0;                        // micromodulus
   double uniform_volume = 0;           // V of every point (a lattice block): the vector forms broadcast it
+  // LPS with ω = δ/|ξ| (bench_explicit's LPS): a = 1/m per point, α_d = 15G, β = 3K − 5G (3D), the δ V of
+  // ω V_j in one constant; θ per point, written by the dilatation pass.
+  std::vector<double> inverse_m, theta;
+  double alpha_d = 0, beta = 0, delta_volume = 0;
 };
 
 // f_i += c s V_j y/|y| for the bond i → j (the constant influence; s = (|y| − |ξ|)/|ξ|).
@@ -142,22 +149,12 @@ using D = sb::D;
 using V = sb::V;
 using M = sb::M;
 
-/// The forces on i of a group of its bonds (neighbours j, lanes `lanes`), c V e/(|ξ||Y|) along Y: the
-/// production PMB loop's arithmetic for the constant influence and a uniform volume. From the other end
-/// the same operations give exactly the negated force (ξ and u_j − u_i are negated exactly).
-[[gnu::always_inline]] inline void group_force(D d, const Block& k, const V xi[3], const V ui[3], V cv,
-                                               const std::uint32_t* j, M lanes, V g[3]) {
-  V dx[3], du[3], dy[3];
-  sb::load_vec3(d, k.x.data(), j, dx);
-  sb::load_vec3(d, k.u.data(), j, du);
-  for (int c = 0; c < 3; ++c) dx[c] = dx[c] - xi[c], du[c] = du[c] - ui[c], dy[c] = dx[c] + du[c];
-  const V xi2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-  const V y2 = dy[0] * dy[0] + dy[1] * dy[1] + dy[2] * dy[2];
-  V r, l, inverse_product;
-  sb::lengths(d, xi2, y2, r, l, inverse_product);
-  const V scale = hn::IfThenElseZero(lanes, (cv * inverse_product) * (l - r));
-  for (int c = 0; c < 3; ++c) g[c] = scale * dy[c];
-}
+/// The geometry of a group of bonds of point i (neighbours j): Y, |ξ|, e = |Y| − |ξ| and 1/(|ξ||Y|), as the
+/// production loops compute them. From the other end the same operations give exactly −Y and the same
+/// lengths (ξ and u_j − u_i are negated exactly), so a bond's force from its other end is exactly negated.
+struct Group {
+  V dy[3], xi, e, inverse_product;
+};
 
 struct PointOf {
   V x[3], u[3];
@@ -166,29 +163,72 @@ struct PointOf {
   }
 };
 
-/// Runs body(g, j, lanes, b) for the groups of point i's bonds in `list` (count of them): g the forces on i
-/// of the group starting at bond b, j its neighbours, lanes those inside the list.
+[[gnu::always_inline]] inline Group group_geometry(D d, const Block& k, const PointOf& p, const std::uint32_t* j) {
+  Group g;
+  V dx[3], du[3];
+  sb::load_vec3(d, k.x.data(), j, dx);
+  sb::load_vec3(d, k.u.data(), j, du);
+  for (int c = 0; c < 3; ++c) dx[c] = dx[c] - p.x[c], du[c] = du[c] - p.u[c], g.dy[c] = dx[c] + du[c];
+  const V xi2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+  const V y2 = g.dy[0] * g.dy[0] + g.dy[1] * g.dy[1] + g.dy[2] * g.dy[2];
+  V l;
+  sb::lengths(d, xi2, y2, g.xi, l, g.inverse_product);
+  g.e = l - g.xi;
+  return g;
+}
+
+/// Runs body(g, j, lanes, b) for the groups of point i's bonds in `list` (count of them): g the geometry of
+/// the group starting at bond b, j its neighbours, lanes those inside the list.
 template <class Body>
 [[gnu::always_inline]] inline void for_each_group(D d, const Block& k, std::size_t i, const std::uint32_t* list,
                                                   std::uint64_t count, Body&& body) {
   const std::uint64_t n = hn::Lanes(d);
-  const V cv = hn::Set(d, k.c * k.uniform_volume);
   const PointOf p(d, k, i);
   std::uint32_t tail[sb::max_lanes];
   for (std::uint64_t b = 0; b < count; b += n) {
     const std::uint32_t* j;
     const M lanes = sb::group_lanes(d, list, b, count, tail, j);
-    V g[3];
-    group_force(d, k, p.x, p.u, cv, j, lanes, g);
-    body(g, j, lanes, b);
+    body(group_geometry(d, k, p, j), j, lanes, b);
   }
+}
+
+/// The PMB forces on i of a group, c V e/(|ξ||Y|) along Y: the production PMB loop's arithmetic for the
+/// constant influence and a uniform volume.
+[[gnu::always_inline]] inline void pmb_force(const Group& g, V cv, M lanes, V out[3]) {
+  const V scale = hn::IfThenElseZero(lanes, (cv * g.inverse_product) * g.e);
+  for (int c = 0; c < 3; ++c) out[c] = scale * g.dy[c];
+}
+
+/// Runs body(g, j, lanes, b) with g the PMB forces on i of each group of its bonds in `list`.
+template <class Body>
+[[gnu::always_inline]] inline void for_each_pmb_group(D d, const Block& k, std::size_t i, const std::uint32_t* list,
+                                                      std::uint64_t count, Body&& body) {
+  const V cv = hn::Set(d, k.c * k.uniform_volume);
+  for_each_group(d, k, i, list, count, [&](const Group& geometry, const std::uint32_t* j, M lanes, std::uint64_t b) {
+    V g[3];
+    pmb_force(geometry, cv, lanes, g);
+    body(g, j, lanes, b);
+  });
+}
+
+/// f[3 j_q + c] += add[c] lane q for the first `active` lanes: partners of one point are distinct, so no
+/// lane overwrites another's. Stored lane by lane (the last partial group's lanes past the list repeat a
+/// partner): AVX-512's scatter instruction made the PMB scatter 10-20 % slower on AMD Zen 4.
+[[gnu::always_inline]] inline void add_to_partners(D d, double* f, const std::uint32_t* j, const V add[3],
+                                                   std::uint64_t active) {
+  HWY_ALIGN double partner[3][sb::max_lanes];
+  V fj[3];
+  sb::load_vec3(d, f, j, fj);
+  for (int c = 0; c < 3; ++c) hn::Store(fj[c] + add[c], d, partner[c]);
+  for (std::uint64_t q = 0; q < active; ++q)
+    for (int c = 0; c < 3; ++c) f[3 * static_cast<std::uint64_t>(j[q]) + c] = partner[c][q];
 }
 
 void gather_vector(const Block& k, double* f) {
   const D d;
   for (std::size_t i = 0; i < k.n; ++i) {
     V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
-    for_each_group(d, k, i, k.neighbors.data() + k.offsets[i], k.offsets[i + 1] - k.offsets[i],
+    for_each_pmb_group(d, k, i, k.neighbors.data() + k.offsets[i], k.offsets[i + 1] - k.offsets[i],
                    [&](const V g[3], const std::uint32_t*, M, std::uint64_t) {
                      for (int c = 0; c < 3; ++c) sum[c] = sum[c] + g[c];
                    });
@@ -199,21 +239,15 @@ void gather_vector(const Block& k, double* f) {
 void scatter_vector(const Block& k, double* f) {
   const D d;
   const std::uint64_t n = hn::Lanes(d);
-  HWY_ALIGN double partner[3][sb::max_lanes];
   std::fill(f, f + 3 * k.n, 0.0);
   for (std::size_t i = 0; i < k.n; ++i) {
     const std::uint64_t count = k.upper_offsets[i + 1] - k.upper_offsets[i];
     V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
-    for_each_group(d, k, i, k.upper_neighbors.data() + k.upper_offsets[i], count,
-                   [&](const V g[3], const std::uint32_t* j, M, std::uint64_t b) {
-      V fj[3];
-      sb::load_vec3(d, f, j, fj);  // the partners of one point are distinct: no lane overwrites another's
-      for (int c = 0; c < 3; ++c) sum[c] = sum[c] + g[c], fj[c] = fj[c] - g[c];
-      // Stored lane by lane (the last partial group's lanes past the list repeat a partner): AVX-512's
-      // scatter instruction made this form 10-20 % slower on AMD Zen 4.
-      for (int c = 0; c < 3; ++c) hn::Store(fj[c], d, partner[c]);
-      for (std::uint64_t q = 0; q < std::min(n, count - b); ++q)
-        for (int c = 0; c < 3; ++c) f[3 * static_cast<std::uint64_t>(j[q]) + c] = partner[c][q];
+    for_each_pmb_group(d, k, i, k.upper_neighbors.data() + k.upper_offsets[i], count,
+                       [&](const V g[3], const std::uint32_t* j, M, std::uint64_t b) {
+      const V minus[3] = {hn::Neg(g[0]), hn::Neg(g[1]), hn::Neg(g[2])};
+      for (int c = 0; c < 3; ++c) sum[c] = sum[c] + g[c];
+      add_to_partners(d, f, j, minus, std::min(n, count - b));
     });
     for (int c = 0; c < 3; ++c) f[3 * i + c] += sb::sum_lanes(d, sum[c]);
   }
@@ -231,8 +265,8 @@ void buffer_vector(const Block& k, double* f, double* pair_force) {
   HWY_ALIGN double last[3 * sb::max_lanes];
   for (std::size_t i = 0; i < k.n; ++i) {  // each pair once, from its smaller end, stored in pair order
     const std::uint64_t first = k.upper_offsets[i], count = k.upper_offsets[i + 1] - first;
-    for_each_group(d, k, i, k.upper_neighbors.data() + first, count,
-                   [&](const V g[3], const std::uint32_t*, M, std::uint64_t b) {
+    for_each_pmb_group(d, k, i, k.upper_neighbors.data() + first, count,
+                       [&](const V g[3], const std::uint32_t*, M, std::uint64_t b) {
       double* out = pair_force + 3 * (first + b);
       if (b + n <= count) {
         hn::StoreInterleaved3(g[0], g[1], g[2], d, out);
@@ -267,6 +301,88 @@ void buffer_vector(const Block& k, double* f, double* pair_force) {
   }
 }
 
+/// arr[j_q] += add lane q for the first `active` lanes (as add_to_partners, one value per point).
+[[gnu::always_inline]] inline void add_to_partner_values(D d, double* arr, const std::uint32_t* j, V add,
+                                                         std::uint64_t active) {
+  HWY_ALIGN double partner[sb::max_lanes];
+  hn::Store(sb::gather(d, arr, j) + add, d, partner);
+  for (std::uint64_t q = 0; q < active; ++q) arr[j[q]] = partner[q];
+}
+
+/// The LPS forces on i of a group, (t_ij + t_ji) V_j along Y/|Y| with ω = δ/|ξ|: the production loop's
+/// α_d (a_i + a_j) e + β ξ (a_i θ_i + a_j θ_j), symmetric in i and j to the bit.
+struct LpsForce {
+  V alpha_d, beta, delta_volume, a_i, a_theta_i;
+  const Block& k;
+  LpsForce(D d, const Block& block, std::size_t i)
+      : alpha_d(hn::Set(d, block.alpha_d)), beta(hn::Set(d, block.beta)), delta_volume(hn::Set(d, block.delta_volume)),
+        a_i(hn::Set(d, block.inverse_m[i])), a_theta_i(hn::Set(d, block.inverse_m[i] * block.theta[i])), k(block) {}
+  [[gnu::always_inline]] void operator()(D d, const Group& g, const std::uint32_t* j, M lanes, V out[3]) const {
+    const V a_j = sb::gather(d, k.inverse_m.data(), j), theta_j = sb::gather(d, k.theta.data(), j);
+    const V t_xi = (alpha_d * (a_i + a_j)) * g.e + (beta * (a_theta_i + a_j * theta_j)) * g.xi;
+    const V carried = hn::IfThenElseZero(lanes, t_xi * delta_volume * g.inverse_product);
+    for (int c = 0; c < 3; ++c) out[c] = carried * g.dy[c];
+  }
+};
+
+/// The whole LPS evaluation, each bond twice: θ_i = 3 a_i δV Σ e over i's bonds (ω ξ V = δ V), then the
+/// forces, each point gathering from its whole family.
+void lps_gather_vector(Block& k, double* f) {
+  const D d;
+  for (std::size_t i = 0; i < k.n; ++i) {
+    V sum = hn::Zero(d);
+    for_each_group(d, k, i, k.neighbors.data() + k.offsets[i], k.offsets[i + 1] - k.offsets[i],
+                   [&](const Group& g, const std::uint32_t*, M lanes, std::uint64_t) { sum = sum + hn::IfThenElseZero(lanes, g.e); });
+    k.theta[i] = 3 * k.inverse_m[i] * (k.delta_volume * sb::sum_lanes(d, sum));
+  }
+  for (std::size_t i = 0; i < k.n; ++i) {
+    const LpsForce force(d, k, i);
+    V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    for_each_group(d, k, i, k.neighbors.data() + k.offsets[i], k.offsets[i + 1] - k.offsets[i],
+                   [&](const Group& g, const std::uint32_t* j, M lanes, std::uint64_t) {
+      V t[3];
+      force(d, g, j, lanes, t);
+      for (int c = 0; c < 3; ++c) sum[c] = sum[c] + t[c];
+    });
+    for (int c = 0; c < 3; ++c) f[3 * i + c] = sb::sum_lanes(d, sum[c]);
+  }
+}
+
+/// The same, each bond once from its smaller end: e added to both ends' dilatation sums, the force to both
+/// ends (`sums`: a scratch array of one value per point).
+void lps_scatter_vector(Block& k, double* f, double* sums) {
+  const D d;
+  const std::uint64_t n = hn::Lanes(d);
+  std::fill(sums, sums + k.n, 0.0);
+  for (std::size_t i = 0; i < k.n; ++i) {
+    const std::uint64_t count = k.upper_offsets[i + 1] - k.upper_offsets[i];
+    V sum = hn::Zero(d);
+    for_each_group(d, k, i, k.upper_neighbors.data() + k.upper_offsets[i], count,
+                   [&](const Group& g, const std::uint32_t* j, M lanes, std::uint64_t b) {
+      const V e = hn::IfThenElseZero(lanes, g.e);
+      sum = sum + e;
+      add_to_partner_values(d, sums, j, e, std::min(n, count - b));
+    });
+    sums[i] += sb::sum_lanes(d, sum);
+    k.theta[i] = 3 * k.inverse_m[i] * (k.delta_volume * sums[i]);  // every smaller point has added its share
+  }
+  std::fill(f, f + 3 * k.n, 0.0);
+  for (std::size_t i = 0; i < k.n; ++i) {
+    const std::uint64_t count = k.upper_offsets[i + 1] - k.upper_offsets[i];
+    const LpsForce force(d, k, i);
+    V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    for_each_group(d, k, i, k.upper_neighbors.data() + k.upper_offsets[i], count,
+                   [&](const Group& g, const std::uint32_t* j, M lanes, std::uint64_t b) {
+      V t[3];
+      force(d, g, j, lanes, t);
+      const V minus[3] = {hn::Neg(t[0]), hn::Neg(t[1]), hn::Neg(t[2])};
+      for (int c = 0; c < 3; ++c) sum[c] = sum[c] + t[c];
+      add_to_partners(d, f, j, minus, std::min(n, count - b));
+    });
+    for (int c = 0; c < 3; ++c) f[3 * i + c] += sb::sum_lanes(d, sum[c]);
+  }
+}
+
 }  // namespace
 }  // namespace peridot::HWY_NAMESPACE
 PERIDOT_SIMD_BONDS_END
@@ -277,6 +393,8 @@ namespace peridot {
 HWY_EXPORT(gather_vector);
 HWY_EXPORT(scatter_vector);
 HWY_EXPORT(buffer_vector);
+HWY_EXPORT(lps_gather_vector);
+HWY_EXPORT(lps_scatter_vector);
 }  // namespace peridot
 
 namespace {
@@ -380,19 +498,38 @@ int main(int argc, char** argv) {
       return 1;
     }
 
+  // LPS: m_i = Σ ω ξ² V = δ V Σ |ξ| with ω = δ/|ξ|.
+  const double G = E / (2 * (1 + 0.25));
+  k.alpha_d = 15 * G, k.beta = 3 * K - 5 * G, k.delta_volume = delta * k.uniform_volume;
+  k.inverse_m.resize(k.n), k.theta.assign(k.n, 0.0);
+  for (std::size_t i = 0; i < k.n; ++i) {
+    double sum = 0;
+    for (std::uint64_t b = k.offsets[i]; b < k.offsets[i + 1]; ++b) {
+      const std::size_t j = k.neighbors[b];
+      double xi2 = 0;
+      for (int d = 0; d < 3; ++d) xi2 += (k.x[3 * j + d] - k.x[3 * i + d]) * (k.x[3 * j + d] - k.x[3 * i + d]);
+      sum += std::sqrt(xi2);
+    }
+    k.inverse_m[i] = 1 / (k.delta_volume * sum);
+  }
+
   const double directed = static_cast<double>(k.neighbors.size());
   const std::size_t pairs = k.upper_neighbors.size();
   std::vector<double> f_gather(3 * k.n), f_scatter(3 * k.n), f_buffer(3 * k.n), pair_force(3 * pairs);
   std::vector<double> v_gather(3 * k.n), v_scatter(3 * k.n), v_buffer(3 * k.n);
   std::vector<double> pair_records(3 * pairs);
   simd::apply_environment();
-  double t[6];
+  double t[8];
   t[0] = best_seconds(repeat, cpu_clock, [&] { gather(k, f_gather.data()); });
   t[1] = best_seconds(repeat, cpu_clock, [&] { scatter(k, f_scatter.data()); });
   t[2] = best_seconds(repeat, cpu_clock, [&] { buffered(k, f_buffer.data(), pair_force); });
   t[3] = best_seconds(repeat, cpu_clock, [&] { HWY_DYNAMIC_DISPATCH(gather_vector)(k, v_gather.data()); });
   t[4] = best_seconds(repeat, cpu_clock, [&] { HWY_DYNAMIC_DISPATCH(scatter_vector)(k, v_scatter.data()); });
   t[5] = best_seconds(repeat, cpu_clock, [&] { HWY_DYNAMIC_DISPATCH(buffer_vector)(k, v_buffer.data(), pair_records.data()); });
+  std::vector<double> lps_gather(3 * k.n), lps_scatter(3 * k.n), sums(k.n);
+  t[6] = best_seconds(repeat, cpu_clock, [&] { HWY_DYNAMIC_DISPATCH(lps_gather_vector)(k, lps_gather.data()); });
+  t[7] = best_seconds(repeat, cpu_clock, [&] { HWY_DYNAMIC_DISPATCH(lps_scatter_vector)(k, lps_scatter.data(), sums.data()); });
+  const Difference lps = difference(lps_scatter, lps_gather);
   const Difference plain_scatter = difference(f_scatter, f_gather), plain_buffer = difference(f_buffer, f_gather);
   const Difference vector_scatter = difference(v_scatter, v_gather), vector_buffer = difference(v_buffer, v_gather);
   const Difference vector_plain = difference(v_gather, f_gather);
@@ -413,7 +550,11 @@ int main(int argc, char** argv) {
   form("gather", t[3], 4, t[3], nullptr);
   form("scatter", t[4], 2, t[3], &vector_scatter);
   form("buffer", t[5], 20, t[3], &vector_buffer);
-  std::printf("\"vs_plain_gather\": %.3f, \"largest_difference_from_plain\": %.3g}}\n", t[0] / t[3], vector_plain.relative);
+  std::printf("\"vs_plain_gather\": %.3f, \"largest_difference_from_plain\": %.3g}, ", t[0] / t[3], vector_plain.relative);
+  std::printf("\"lps_vector\": {");
+  form("gather", t[6], 4, t[6], nullptr);
+  form("scatter", t[7], 2, t[6], &lps);
+  std::printf("\"end\": 0}}\n");
   return 0;
 }
 
