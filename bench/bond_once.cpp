@@ -156,6 +156,7 @@ struct Group {
   V dy[3], xi, e, inverse_product;
 };
 
+/// Point i's x and u, broadcast.
 struct PointOf {
   V x[3], u[3];
   PointOf(D d, const Block& k, std::size_t i) {
