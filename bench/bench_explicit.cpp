@@ -30,11 +30,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <numbers>
 #include <string>
 
-#include "peridot/deck/model_schema.hpp"
-#include "peridot/deck/solver_schema.hpp"
 #include "peridot/parallel/communicator.hpp"
 #include "peridot/solvers/simulation.hpp"
 #include "benchmark_problem.hpp"

@@ -39,6 +39,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -455,10 +456,8 @@ int main(int argc, char** argv) {
     }
   }
   MpiSession mpi(argc, argv);
-  const double spacing = 1e-3;
-  bench::Options o;  // PMB, the constant influence
+  bench::Options o;  // PMB, the constant influence, Δx = 1 mm
   for (int d = 0; d < 3; ++d) o.n[d] = n[d];
-  o.spacing = spacing;
   o.steps = 1;
   Simulation sim(bench::benchmark_problem(o));
   const Discretization& disc = sim.discretization();
@@ -469,8 +468,10 @@ int main(int argc, char** argv) {
   k.volume = disc.volume;
   k.offsets = bonds.offsets;
   k.neighbors = bonds.neighbors;
-  const double delta = 3.015 * spacing, E = 200e9, K = E / (3 * (1 - 2 * 0.25));
-  k.c = 18 * K / (3.141592653589793 * delta * delta * delta * delta);
+  // The block's moduli and horizon, as benchmark_problem set them.
+  const ElasticConstants& elastic = sim.problem().materials.front().elastic;
+  const double delta = sim.problem().bodies.front().horizon, K = elastic.bulk_modulus, G = elastic.shear_modulus;
+  k.c = 18 * K / (std::numbers::pi * delta * delta * delta * delta);
   // A smooth displacement of about 1e-4 strain, as bench_explicit's block after some steps.
   k.u.resize(3 * k.n);
   for (std::size_t i = 0; i < k.n; ++i)
@@ -500,7 +501,6 @@ int main(int argc, char** argv) {
     }
 
   // LPS: m_i = Σ ω ξ² V = δ V Σ |ξ| with ω = δ/|ξ|.
-  const double G = E / (2 * (1 + 0.25));
   k.alpha_d = 15 * G, k.beta = 3 * K - 5 * G, k.delta_volume = delta * k.uniform_volume;
   k.inverse_m.resize(k.n), k.theta.assign(k.n, 0.0);
   for (std::size_t i = 0; i < k.n; ++i) {
