@@ -322,5 +322,61 @@ solver: {{end_time: 40 us}}
   EXPECT_LT(speed_with, speed_without - 0.1);
 }
 
+/// Runs two_cubes(contact, v) for its first `steps` steps: the closest approach of the cubes, the largest
+/// |external work + stored contact energy| (the contact's work is minus its stored energy when the stored
+/// energy is the force's potential; no support does work here), each relative to the initial kinetic energy,
+/// and the final displacements.
+struct Impact {
+  double closest = INFINITY, worst_potential = 0;
+  std::vector<double> u;
+};
+Impact impact(const std::string& contact, double v, bool damage, std::uint64_t steps) {
+  std::string deck = two_cubes(contact, v);
+  if (!damage) deck.replace(deck.find(", damage: {critical_stretch: 0.01}"), 34, "");
+  Simulation sim(parse_deck(deck, "cubes.yaml", "."));
+  sim.initialize();
+  const double start = sim.totals().kinetic_energy;
+  Impact r;
+  while (sim.state().step < steps) {
+    sim.step();
+    r.closest = std::min(r.closest, closest_approach(sim));
+    const Totals t = sim.totals();
+    r.worst_potential = std::max(r.worst_potential, std::abs(t.external_work + t.contact_energy) / start);
+  }
+  r.u.assign(sim.state().u.data(), sim.state().u.data() + 3 * sim.discretization().num_points());
+  return r;
+}
+
+TEST(ContactBarrier, PairsThatStayOutsideItSeeTheLinearForceBitForBit) {
+  // At 2 × 100 m/s with soft contact the cubes come no closer than 0.73 mm, outside r_b = 0.5 × 1.35 mm.
+  const Impact linear = impact("contact: {stiffness_factor: 0.5}", 100, true, 400);
+  const Impact barrier = impact("contact: {stiffness_factor: 0.5, barrier_fraction: 0.5}", 100, true, 400);
+  ASSERT_GT(linear.closest, 0.5 * 1.35e-3);
+  EXPECT_EQ(linear.u, barrier.u);
+}
+
+TEST(ContactBarrier, StoredEnergyIsThePotentialOfTheForce) {
+  // Elastic cubes, no damage, a barrier at 0.8 d (1.08 mm) that the pairs enter (they come within 0.73 mm):
+  // the work the contact forces did is minus the energy stored, through the barrier and out again, to the
+  // time-integration error of the linear law (measured: the same with b = 0).
+  for (double fraction : {0.0, 0.8}) {
+    const Impact r = impact(fmt::format("contact: {{stiffness_factor: 0.5, barrier_fraction: {}}}", fraction), 100, false, 400);
+    fmt::print("measured: barrier {}: closest {:.3g} mm, worst |work + stored| {:.3g} of KE0\n", fraction, r.closest * 1e3,
+               r.worst_potential);
+    if (fraction > 0) EXPECT_LT(r.closest, fraction * 1.35e-3);
+    EXPECT_LT(r.worst_potential, 2e-3);
+  }
+}
+
+TEST(ContactBarrier, HoldsAnImpactThatTheLinearForcePushesThrough) {
+  // 2 × 300 m/s of glass on glass with soft contact: the linear force lets surface points meet (a pair at
+  // 1 µm), the barrier keeps every pair 70 times farther apart.
+  const Impact linear = impact("contact: {stiffness_factor: 0.5}", 300, true, 400);
+  const Impact barrier = impact("contact: {stiffness_factor: 0.5, barrier_fraction: 0.5}", 300, true, 400);
+  fmt::print("measured: closest approach linear {:.3g} mm, barrier 0.5 {:.3g} mm\n", linear.closest * 1e3, barrier.closest * 1e3);
+  EXPECT_LT(linear.closest, 0.01e-3);
+  EXPECT_GT(barrier.closest, 0.05e-3);
+}
+
 }  // namespace
 }  // namespace peridot

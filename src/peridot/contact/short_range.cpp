@@ -15,6 +15,19 @@ namespace peridot {
 
 namespace {
 
+/// The pair force of short_range.hpp per k_ij V_j (m): d − r, and below the barrier distance r_c = b d
+/// (b > 0) its C¹ continuation d − r_c + r_c (r_c − r)/r, which grows without bound as r → 0.
+inline double pair_push(double d, double r, double fraction) {
+  const double barrier = fraction * d;
+  return r >= barrier ? d - r : d - barrier + barrier * (barrier - r) / r;
+}
+
+/// The potential of pair_push per k_ij (m²) below r_c (its integral from r to d).
+inline double barrier_potential(double d, double r, double barrier) {
+  return 0.5 * (d - barrier) * (d - barrier) + (d - barrier) * (barrier - r) +
+         barrier * (barrier * std::log(barrier / r) - (barrier - r));
+}
+
 /// A cell of the search grid as one integer: 21 bits per coordinate (offset so that negatives fit).
 std::uint64_t cell_key(std::int64_t ix, std::int64_t iy, std::int64_t iz) {
   constexpr std::int64_t offset = std::int64_t{1} << 20, mask = (std::int64_t{1} << 21) - 1;
@@ -54,6 +67,7 @@ ShortRangeContact::ShortRangeContact(const ContactSpec& spec, const Problem& pro
       dimension_(problem.dimension),
       distance_factor_(spec.distance_factor),
       reference_fraction_(spec.reference_fraction),
+      barrier_fraction_(spec.barrier_fraction),
       damage_(damage) {
   // k_ij from the softer of the two blocks, so that contact never stiffens a point beyond what its own
   // block's stable time step allows for.
@@ -298,7 +312,7 @@ void ShortRangeContact::compute(const double* y, const double* v, const std::vec
       }
       if (r2 >= d * d || r2 == 0) continue;
       const double r = std::sqrt(r2);
-      const double push = coefficient_[k] * (d - r);  // |b| (N/m³)
+      const double push = coefficient_[k] * pair_push(d, r, barrier_fraction_);  // |b| (N/m³)
       const double s = push / r;
       fx -= s * dx, fy -= s * dy, fz -= s * dz;
       if (!friction || mu_[k] == 0) continue;
@@ -327,7 +341,10 @@ double ShortRangeContact::point_energy_density(std::size_t i, const double* y, c
     const double dx = y[3 * j] - y[3 * i], dy = y[3 * j + 1] - y[3 * i + 1], dz = y[3 * j + 2] - y[3 * i + 2];
     const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
     const double d = bond_[k] != no_bond && opened ? std::min(distance_[k], opened[bond_[k]]) : distance_[k];
-    if (r < d) energy += 0.25 * coefficient_[k] * (d - r) * (d - r);
+    if (r >= d) continue;
+    const double barrier = barrier_fraction_ * d;
+    energy += r >= barrier ? 0.25 * coefficient_[k] * (d - r) * (d - r)
+                           : 0.5 * coefficient_[k] * barrier_potential(d, r, barrier);
   }
   return energy;
 }

@@ -753,6 +753,7 @@ struct Parser {
     c.distance_factor = r["distance_factor"].number;
     c.reference_fraction = r["reference_fraction"].number;
     c.skin = r["skin"].number;
+    c.barrier_fraction = r["barrier_fraction"].number;
     for_each_item(r["friction"], r.path_of("friction"), [&](const YAML::Node& node, const SourcePos& pos, const std::string& path) {
       MapReader f(ctx, node, pos, path, deck_section("contact.friction[i]").keys);
       FrictionSpec spec;

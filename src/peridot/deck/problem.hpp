@@ -213,6 +213,7 @@ struct ContactSpec {
   double distance_factor = 1.35;    ///< d_ij ≤ factor × (r_i + r_j), r the node radius (half the spacing) (-)
   double reference_fraction = 0.9;  ///< d_ij ≤ fraction × |ξ_ij|, the reference distance (-)
   double skin = 0.5;                ///< Verlet skin as a fraction of the largest node diameter (-)
+  double barrier_fraction = 0;      ///< below this fraction of d_ij the repulsion grows without bound; 0: linear (-)
   std::vector<FrictionSpec> friction;
 };
 

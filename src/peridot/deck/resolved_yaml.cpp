@@ -346,6 +346,7 @@ void emit_contact(YAML::Emitter& out, const Problem& p) {
   out << YAML::Key << "distance_factor" << YAML::Value << number(c.distance_factor);
   out << YAML::Key << "reference_fraction" << YAML::Value << number(c.reference_fraction);
   out << YAML::Key << "skin" << YAML::Value << number(c.skin);
+  out << YAML::Key << "barrier_fraction" << YAML::Value << number(c.barrier_fraction);
   emit_list(out, "friction", c.friction, [&](const FrictionSpec& f) {
     out << YAML::Key << "bodies" << YAML::Value << YAML::Flow << YAML::BeginSeq << f.first;
     if (f.second != f.first) out << f.second;
