@@ -1,16 +1,18 @@
 #!/usr/bin/python3
 """Two elastic spheres colliding head on (deck.yaml) against Hertz's theory, at several resolutions.
 
-    hertz.py --peridot PATH [--ratios 10,15,20] [--threads N] [--out DIR] [--check TOL] [--reuse]
+    hertz.py --peridot PATH [--ratios 10,15,20] [--stiffness S --safety F] [--threads N] [--out DIR] [--check TOL] [--reuse]
 
 Hertz, for two spheres of radius R, Young's modulus E, Poisson ratio ν (1/4 for bond-based PMB), density ρ, closing
 at relative speed v: with E* = E / (2(1 − ν²)), R* = R/2, m* = m/2 (m = 4πR³ρ/3), the largest approach is
 δ_max = (15 m* v² / (16 E* √R*))^(2/5), the peak force F_max = (4/3) E* √R* δ_max^(3/2), and the contact lasts
 t_c = 2.9432 δ_max / v; the script also integrates m* δ'' = −(4/3) E* √R* δ^(3/2) for the whole force history. For
-each R/Δx it runs deck.yaml (the spacing R/ratio, the gap between the spheres kept at 3 mm), takes the force on
+each R/Δx it runs deck.yaml (the spacing R/ratio, the spheres a little more than a horizon apart, until 14 µs after
+they touch), takes the force on
 the right sphere from the history (contact_right_x, every step), and prints the peak force, the contact time (the
 time the force exceeds 5 % of its peak, against the same for Hertz: the first and last touches of a few surface
-points are too faint to time) and the largest momentum (relative to m v/2). Writes DIR/hertz.png. --check TOL exits 1 unless the finest run's peak force and contact
+points are too faint to time) and the largest momentum (relative to m v/2). --stiffness S sets the contact's
+stiffness_factor (15 by default) and --safety F the time step's safety factor (0.7 in the deck). Writes DIR/hertz.png. --check TOL exits 1 unless the finest run's peak force and contact
 time are both within TOL (a fraction) of Hertz's."""
 import argparse
 import csv
@@ -73,17 +75,26 @@ def time_above(t, force, fraction):
     return start, end
 
 
-def run(peridot, ratio, out, threads, reuse=False):
+def run(peridot, ratio, out, threads, reuse=False, stiffness=None, safety=None):
     spacing = R / ratio
     text = (HERE / "deck.yaml").read_text()
     text = text.replace("spacing: 0.5 mm             # R/dx = 10", f"spacing: {spacing * 1e3:.10g} mm")
-    # The surfaces about 3 mm apart, the centres on lattice planes (multiples of Δx), so that the spheres are
-    # mirror images. (Centres on lattice points instead leave one lone point at each pole, which the other
-    # sphere pushes in: worse.)
-    centre = round((R + 1.5e-3) / spacing) * spacing
+    # The surfaces about a horizon and a spacing apart (never bonded), the centres on lattice planes (multiples
+    # of Δx), so that the spheres are mirror images. (Centres on lattice points instead leave one lone point at
+    # each pole, which the other sphere pushes in: worse.) The run ends 14 µs after the spheres touch (when the
+    # surfaces, half a spacing beyond the outer points, meet): Hertz's contact lasts 12.3 µs.
+    horizon = 3.015 * spacing
+    centre = round((R + 0.5 * (horizon + spacing)) / spacing) * spacing
+    assert 2 * (centre - R) > horizon
+    end = math.ceil(((2 * (centre - R) - spacing) / V + 14e-6) * 1e6)
+    text = text.replace("end_time: 60 us", f"end_time: {end} us")
+    if stiffness is not None:
+        text = text.replace("contact:\n", f"contact:\n  stiffness_factor: {stiffness:g}\n")
+    if safety is not None:
+        text = text.replace("safety_factor: 0.7", f"safety_factor: {safety:g}")
     text = text.replace("center: [-6.5 mm, 0, 0]", f"center: [{-centre * 1e3:.10g} mm, 0, 0]")
     text = text.replace("center: [6.5 mm, 0, 0]", f"center: [{centre * 1e3:.10g} mm, 0, 0]")
-    name = f"ratio{ratio:g}"
+    name = f"ratio{ratio:g}" + (f"_stiffness{stiffness:g}" if stiffness is not None else "")
     text = text.replace("directory: out", f"directory: {out / name}")
     deck = out / f"{name}.yaml"
     deck.write_text(text)
@@ -100,6 +111,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--peridot", required=True)
     ap.add_argument("--ratios", default="10,15,20")
+    ap.add_argument("--stiffness", type=float, help="the contact's stiffness_factor (default: the deck's, 15)")
+    ap.add_argument("--safety", type=float, help="the time step's safety factor (default: the deck's, 0.7)")
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--out", default=str(HERE / "out"))
     ap.add_argument("--check", type=float)
@@ -120,14 +133,14 @@ def main():
     fig, ax = plt.subplots(figsize=(7, 4.2))
     errors = None
     for ratio in [float(r) for r in a.ratios.split(",")]:
-        t, force, momentum = run(a.peridot, ratio, out, a.threads, a.reuse)
+        t, force, momentum = run(a.peridot, ratio, out, a.threads, a.reuse, a.stiffness, a.safety)
         peak = force.max()
         start, end = time_above(t, force, THRESHOLD)
         errors = (peak / fmax - 1, (end - start) / above_hertz - 1)
         print(f"| {ratio:g} | {peak:.1f} | {errors[0] * 100:+.1f} % | {(end - start) * 1e6:.3f} | {errors[1] * 100:+.1f} % | "
               f"{np.abs(momentum).max() / (m * V / 2):.2g} |")
         middle = 0.5 * (start + end)
-        ax.plot((t - middle) * 1e6, force / 1e3, label=f"Peridot, R/Δx = {ratio:g}")
+        ax.plot((t - middle) * 1e6, force / 1e3, label=f"Peridot, R/Δx = {ratio:g}" + (f", stiffness {a.stiffness:g}" if a.stiffness is not None else ""))
     ax.plot((th - 0.5 * (hs + he)) * 1e6, fh / 1e3, "k--", label="Hertz")
     ax.set_xlim(-12, 12)
     ax.set_xlabel("time from the middle of the contact (µs)")

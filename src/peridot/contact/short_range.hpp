@@ -13,8 +13,8 @@
 // broke, grows with the largest distance since, and is d_ij once the pair has been that far apart:
 //   d_ij(t) = min(d_ij, max over the time since the break of r). The force then only resists approach.
 // With friction (coefficient μ per pair of bodies), i also gets μ k_ij (d_ij − r) V_j along the tangential part of v_j − v_i (Coulomb, against the sliding).
-// The linear force is finite at r = 0, so a pair pressed hard enough passes through and is then pushed the
-// wrong way (two spheres at a Hertz pressure of 0.27 E*, examples/sphere_collision). With a barrier fraction b > 0
+// The linear force is finite at r = 0, so a pair driven together head-on hard enough meets, and coincident points
+// have no direction between them (docs/algorithms.md §17). With a barrier fraction b > 0
 // the force below r_c = b d_ij continues C¹ as a barrier that no finite energy crosses:
 //   |b_i| = k_ij (d_ij − r_c + r_c (r_c − r)/r) V_j,  stored ½ k (d − r_c)² + k (d − r_c)(r_c − r) + k r_c (r_c ln(r_c/r) − r_c + r).
 //

@@ -383,8 +383,8 @@ std::vector<SectionSpec> make_sections() {
                                 "within d + skin and is rebuilt when a point has moved half the skin"},
                 {.key = "barrier_fraction", .default_yaml = "0", .range = {0, 1, false, true},
                  .description = "below this fraction b of d_ij the pair force stops growing linearly and becomes a barrier, "
-                                "(c_S/δ)(d_ij − r_c + r_c (r_c − r)/r) with r_c = b d_ij, which no pair can be pushed "
-                                "through (the linear force is finite at r = 0); 0: linear at every distance (LAMMPS)"},
+                                "(c_S/δ)(d_ij − r_c + r_c (r_c − r)/r) with r_c = b d_ij, whose energy no pair driven together "
+                                "head-on can cross (the linear force is finite at r = 0); 0: linear at every distance (LAMMPS)"},
                 {.key = "friction", .type = VT::sequence, .description = "Coulomb friction between pairs of bodies"}}});
   s.push_back({"contact.friction[i]", "Coulomb friction between the points of two bodies (or within one): a force "
                "μ |f_n| against their relative tangential velocity",
