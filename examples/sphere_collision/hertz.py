@@ -21,6 +21,7 @@ import csv
 import math
 import os
 import pathlib
+import re
 import subprocess
 import sys
 
@@ -77,27 +78,33 @@ def time_above(t, force, fraction):
     return start, end
 
 
+def replaced(text, old, new):
+    """text with old (which must be there: the deck and this script must not drift apart) replaced by new."""
+    assert old in text, f"deck.yaml has no {old!r}"
+    return text.replace(old, new)
+
+
 def run(peridot, ratio, out, threads, reuse=False, stiffness=None, safety=None):
     spacing = R / ratio
     text = (HERE / "deck.yaml").read_text()
-    text = text.replace("spacing: 0.5 mm             # R/dx = 10", f"spacing: {spacing * 1e3:.10g} mm")
+    text = replaced(text, "spacing: 0.5 mm             # R/dx = 10", f"spacing: {spacing * 1e3:.10g} mm")
     # The surfaces about a horizon and a spacing apart (never bonded), the centres on lattice planes (multiples
     # of Δx), so that the spheres are mirror images. (Centres on lattice points instead leave one lone point at
     # each pole, which the other sphere pushes in: worse.) The run ends 14 µs after the spheres touch (when the
     # surfaces, half a spacing beyond the outer points, meet): Hertz's contact lasts 12.3 µs.
-    horizon = 3.015 * spacing
+    horizon = float(re.search(r"horizon_factor: ([0-9.]+)", text).group(1)) * spacing
     centre = round((R + 0.5 * (horizon + spacing)) / spacing) * spacing
     assert 2 * (centre - R) > horizon
     end = math.ceil(((2 * (centre - R) - spacing) / V + 14e-6) * 1e6)
-    text = text.replace("end_time: 60 us", f"end_time: {end} us")
+    text = replaced(text, "end_time: 60 us", f"end_time: {end} us")
     if stiffness is not None:
-        text = text.replace("contact:\n", f"contact:\n  stiffness_factor: {stiffness:g}\n")
+        text = replaced(text, "contact:\n", f"contact:\n  stiffness_factor: {stiffness:g}\n")
     if safety is not None:
-        text = text.replace("safety_factor: 0.7", f"safety_factor: {safety:g}")
-    text = text.replace("center: [-6.5 mm, 0, 0]", f"center: [{-centre * 1e3:.10g} mm, 0, 0]")
-    text = text.replace("center: [6.5 mm, 0, 0]", f"center: [{centre * 1e3:.10g} mm, 0, 0]")
+        text = replaced(text, "safety_factor: 0.7", f"safety_factor: {safety:g}")
+    text = replaced(text, "center: [-6.5 mm, 0, 0]", f"center: [{-centre * 1e3:.10g} mm, 0, 0]")
+    text = replaced(text, "center: [6.5 mm, 0, 0]", f"center: [{centre * 1e3:.10g} mm, 0, 0]")
     name = f"ratio{ratio:g}" + (f"_stiffness{stiffness:g}" if stiffness is not None else "")
-    text = text.replace("directory: out", f"directory: {out / name}")
+    text = replaced(text, "directory: out", f"directory: {out / name}")
     deck = out / f"{name}.yaml"
     deck.write_text(text)
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))

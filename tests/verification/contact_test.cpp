@@ -2,7 +2,9 @@
 // momentum conserved to round-off and the energy closing; the faces of a crack do not pass through each
 // other; a bond broken under compression gives its pair no energy; contact that touches nothing changes
 // no bit; a free rigid sphere exchanges momentum with a block
-// exactly; each rigid shape pushes a point out along its surface normal with κ h.
+// exactly; each rigid shape pushes a point out along its surface normal with κ h. The opt-in barrier
+// (contact.barrier_fraction) changes no bit where no pair enters it, stores the potential of its force, and
+// keeps apart the pairs of a hard impact that the linear force lets meet.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -348,7 +350,7 @@ Impact impact(const std::string& contact, double v, bool damage, std::uint64_t s
 }
 
 TEST(ContactBarrier, PairsThatStayOutsideItSeeTheLinearForceBitForBit) {
-  // At 2 × 100 m/s with soft contact the cubes come no closer than 0.73 mm, outside r_b = 0.5 × 1.35 mm.
+  // At 2 × 100 m/s with soft contact the cubes come no closer than 0.73 mm, outside r_c = 0.5 × 1.35 mm.
   const Impact linear = impact("contact: {stiffness_factor: 0.5}", 100, true, 400);
   const Impact barrier = impact("contact: {stiffness_factor: 0.5, barrier_fraction: 0.5}", 100, true, 400);
   ASSERT_GT(linear.closest, 0.5 * 1.35e-3);
@@ -368,7 +370,7 @@ TEST(ContactBarrier, StoredEnergyIsThePotentialOfTheForce) {
   }
 }
 
-TEST(ContactBarrier, HoldsAnImpactThatTheLinearForcePushesThrough) {
+TEST(ContactBarrier, KeepsApartPairsThatTheLinearForceLetsMeet) {
   // 2 × 300 m/s of glass on glass with soft contact: the linear force lets surface points meet (a pair at
   // 1 µm), the barrier keeps every pair 70 times farther apart.
   const Impact linear = impact("contact: {stiffness_factor: 0.5}", 300, true, 400);
